@@ -1,0 +1,25 @@
+#pragma once
+// Presets: named grids kept as JSON files in presets/ (the grids that rerun a paper's table).
+//   { "description": "...",
+//     "runs": [ { "experiment": "occupancy", "set": { "variant": ["dynamic"], "size": [1, 2, 4] },
+//                 "resolution": "800x600", "reps": 5, "warmup": 1 } ] }
+#include <string>
+#include <vector>
+
+#include "core/runner.hpp"
+
+namespace oitbench {
+
+struct Preset {
+  std::string name, description, path;
+  std::vector<RunRequest> runs;
+};
+
+std::string default_preset_dir();
+std::vector<Preset> list_presets(const std::string& dir);
+// Throws UsageError naming the file, the line and what was expected.
+Preset load_preset(const std::string& dir, const std::string& name);
+Preset parse_preset(const std::string& name, const std::string& path, const std::string& text);
+Resolution parse_resolution(const std::string& text);  // "800x600"; throws UsageError
+
+}  // namespace oitbench

@@ -1,0 +1,60 @@
+#include "core/registry.hpp"
+
+#include <algorithm>
+
+namespace oitbench {
+
+gl::Program CaseContext::build(const std::vector<ShaderStage>& stages, Defines defines) const {
+  if (fault_ == "wrong-result") defines.emplace_back("OITBENCH_FAULT_WRONG_RESULT", "1");
+  if (fault_ == "compile-error") defines.emplace_back("OITBENCH_FAULT_COMPILE_ERROR", "1");
+  if (fault_ == "hang") defines.emplace_back("OITBENCH_FAULT_HANG", "1");
+  return shaders_.build(stages, defines);
+}
+
+void Registry::add(std::unique_ptr<Experiment> e) {
+  if (find(e->name())) throw std::logic_error("experiment '" + e->name() + "' registered twice");
+  experiments_.push_back(std::move(e));
+  std::sort(experiments_.begin(), experiments_.end(),
+            [](const auto& a, const auto& b) { return a->name() < b->name(); });
+}
+
+const Experiment* Registry::find(const std::string& name) const {
+  for (const auto& e : experiments_)
+    if (e->name() == name) return e.get();
+  return nullptr;
+}
+Experiment* Registry::find(const std::string& name) {
+  return const_cast<Experiment*>(static_cast<const Registry*>(this)->find(name));
+}
+
+std::string Registry::names() const {
+  std::string s;
+  for (const auto& e : experiments_) s += (s.empty() ? "" : ", ") + e->name();
+  return s;
+}
+
+std::vector<ParamSpec> Registry::framework_params() {
+  ParamSpec fault;
+  fault.name = "fault";
+  fault.description =
+      "fault injection for testing the framework: wrong-result (the shader perturbs its output, so the "
+      "validator must fail), compile-error, hang (an endless shader loop for the watchdog)";
+  fault.defaults = {"none"};
+  fault.allowed = {"none", "wrong-result", "compile-error", "hang"};
+  ParamSpec seed;
+  seed.name = "seed";
+  seed.description = "seed of the case's random inputs";
+  seed.defaults = {"1"};
+  seed.kind = ParamSpec::Kind::Integer;
+  seed.min = 0;
+  seed.max = 4294967295.0;
+  return {fault, seed};
+}
+
+std::vector<ParamSpec> Registry::params_of(const Experiment& e) const {
+  auto p = e.params();
+  for (auto& f : framework_params()) p.push_back(std::move(f));
+  return p;
+}
+
+}  // namespace oitbench

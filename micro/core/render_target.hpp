@@ -1,0 +1,38 @@
+#pragma once
+// The headless drawing surface every experiment shares: an FBO with a colour attachment (and
+// optionally depth-stencil), a full-screen triangle, and read-back.
+#include <vector>
+
+#include "core/gl_objects.hpp"
+
+namespace oitbench {
+
+class RenderTarget {
+ public:
+  RenderTarget(int width, int height, GLenum color_format = GL_RGBA32F, bool depth_stencil = false);
+  void bind() const;  // binds the FBO and sets the viewport
+  int width() const { return width_; }
+  int height() const { return height_; }
+  GLuint framebuffer() const { return fbo_.get(); }
+  GLuint color_texture() const { return color_.get(); }
+  std::vector<float> read_rgba32f() const;     // row-major from the bottom row, 4 floats per pixel
+  std::vector<unsigned> read_r32ui() const;    // for GL_R32UI targets
+
+ private:
+  int width_, height_;
+  gl::Framebuffer fbo_;
+  gl::Texture color_;
+  gl::Renderbuffer depth_stencil_;
+};
+
+// Draws one triangle covering the viewport (shaders/common/fullscreen.vert, no vertex buffer).
+class FullscreenTriangle {
+ public:
+  FullscreenTriangle() : vao_(gl::make_vertex_array()) {}
+  void draw(GLsizei instances = 1) const;
+
+ private:
+  gl::VertexArray vao_;
+};
+
+}  // namespace oitbench

@@ -1,0 +1,175 @@
+#include "core/shader.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace oitbench {
+namespace {
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw ShaderError("cannot open shader file " + p.string());
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Assembler {
+  const std::filesystem::path& root;
+  AssembledSource out;
+  std::vector<std::string> stack;
+  std::set<std::string> included;
+
+  int file_index(const std::string& name) {
+    out.files.push_back(name);
+    return static_cast<int>(out.files.size()) - 1;
+  }
+
+  std::filesystem::path resolve(const std::string& include, const std::filesystem::path& from_dir) {
+    for (const auto& base : {from_dir, root}) {
+      auto candidate = (base / include).lexically_normal();
+      if (std::filesystem::exists(candidate)) return candidate;
+    }
+    throw ShaderError("shader include \"" + include + "\" not found (searched " + from_dir.string() +
+                      " and " + root.string() + ")");
+  }
+
+  std::string display_name(const std::filesystem::path& p) const {
+    auto rel = p.lexically_relative(root);
+    return (rel.empty() || rel.native().starts_with("..")) ? p.string() : ("shaders/" + rel.string());
+  }
+
+  void emit(const std::string& name, const std::string& text, const std::filesystem::path& dir) {
+    if (std::find(stack.begin(), stack.end(), name) != stack.end())
+      throw ShaderError("shader include cycle at " + name);
+    stack.push_back(name);
+    const int idx = file_index(name);
+    out.text += "#line 1 " + std::to_string(idx) + "\n";
+    static const std::regex include_re(R"(^\s*#\s*include\s+\"([^\"]+)\"\s*$)");
+    std::istringstream lines(text);
+    std::string line;
+    int lineno = 0;
+    while (std::getline(lines, line)) {
+      ++lineno;
+      std::smatch m;
+      if (std::regex_match(line, m, include_re)) {
+        auto path = resolve(m[1].str(), dir);
+        auto child = display_name(path);
+        if (included.insert(child).second) emit(child, read_file(path), path.parent_path());
+        out.text += "#line " + std::to_string(lineno + 1) + " " + std::to_string(idx) + "\n";
+      } else {
+        out.text += line;
+        out.text += '\n';
+      }
+    }
+    stack.pop_back();
+  }
+};
+
+std::string preamble(const std::string& version, const Defines& defines) {
+  std::string p = "#version " + version + "\n";
+  for (const auto& [k, v] : defines) p += "#define " + k + (v.empty() ? "" : " " + v) + "\n";
+  return p;
+}
+
+}  // namespace
+
+ShaderLibrary::ShaderLibrary(std::filesystem::path root, std::string version)
+    : root_(std::move(root)), version_(std::move(version)) {}
+
+AssembledSource ShaderLibrary::assemble_text(const std::string& name, const std::string& text,
+                                             const Defines& defines) const {
+  Assembler a{root_, {}, {}, {}};
+  a.file_index("<preamble: #version and injected defines>");
+  a.out.text = preamble(version_, defines);
+  a.emit(name, text, root_);
+  return a.out;
+}
+
+AssembledSource ShaderLibrary::assemble(const std::string& path, const Defines& defines) const {
+  auto full = root_ / path;
+  Assembler a{root_, {}, {}, {}};
+  a.file_index("<preamble: #version and injected defines>");
+  a.out.text = preamble(version_, defines);
+  auto name = a.display_name(full);
+  a.included.insert(name);
+  a.emit(name, read_file(full), full.parent_path());
+  return a.out;
+}
+
+std::string map_shader_log(const std::string& log, const AssembledSource& source) {
+  // Mesa: "0:12(3): error: ..."  NVIDIA: "0(12) : error C1008: ..."
+  static const std::regex mesa_re(R"((^|\n)(\d+):(\d+)\((\d+)\))");
+  static const std::regex nv_re(R"((^|\n)(\d+)\((\d+)\) ?)");
+  auto name_of = [&](const std::string& idx) {
+    size_t i = std::stoul(idx);
+    return i < source.files.size() ? source.files[i] : "<source " + idx + ">";
+  };
+  std::string out;
+  std::smatch m;
+  std::string rest = log;
+  if (std::regex_search(log, mesa_re)) {
+    while (std::regex_search(rest, m, mesa_re)) {
+      out += m.prefix().str() + m[1].str() + name_of(m[2].str()) + ":" + m[3].str() + ":" + m[4].str();
+      rest = m.suffix().str();
+    }
+  } else {
+    while (std::regex_search(rest, m, nv_re)) {
+      out += m.prefix().str() + m[1].str() + name_of(m[2].str()) + ":" + m[3].str();
+      rest = m.suffix().str();
+    }
+  }
+  return out + rest;
+}
+
+std::string format_defines(const Defines& defines) {
+  std::string s;
+  for (const auto& [k, v] : defines) s += (s.empty() ? "" : " ") + k + (v.empty() ? "" : "=" + v);
+  return s.empty() ? "(none)" : s;
+}
+
+gl::Program ShaderLibrary::build(const std::vector<ShaderStage>& stages, const Defines& defines) const {
+  gl::Program program(glCreateProgram());
+  std::vector<gl::Shader> shaders;
+  for (const auto& st : stages) {
+    auto src = assemble(st.path, defines);
+    gl::Shader sh(glCreateShader(st.stage));
+    const char* text = src.text.c_str();
+    glShaderSource(sh.get(), 1, &text, nullptr);
+    glCompileShader(sh.get());
+    GLint ok = 0;
+    glGetShaderiv(sh.get(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      GLint len = 0;
+      glGetShaderiv(sh.get(), GL_INFO_LOG_LENGTH, &len);
+      std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+      glGetShaderInfoLog(sh.get(), len, nullptr, log.data());
+      log.resize(std::strlen(log.c_str()));
+      throw ShaderError("compile error in shaders/" + st.path + " with defines [" + format_defines(defines) +
+                        "]:\n" + map_shader_log(log, src));
+    }
+    glAttachShader(program.get(), sh.get());
+    shaders.push_back(std::move(sh));
+  }
+  glLinkProgram(program.get());
+  GLint ok = 0;
+  glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &len);
+    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(program.get(), len, nullptr, log.data());
+    log.resize(std::strlen(log.c_str()));
+    std::string names;
+    for (const auto& st : stages) names += (names.empty() ? "" : " + ") + ("shaders/" + st.path);
+    throw ShaderError("link error in " + names + " with defines [" + format_defines(defines) + "]:\n" + log);
+  }
+  for (const auto& sh : shaders) glDetachShader(program.get(), sh.get());
+  return program;
+}
+
+}  // namespace oitbench

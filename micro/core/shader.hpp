@@ -1,0 +1,55 @@
+#pragma once
+// GLSL assembly: `#version` preamble, the case's injected defines, `#include "file"` resolved
+// relative to the including file, and `#line L S` markers so a driver's log can be mapped back
+// from (source-string, line) to the real file and line.
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/gl_objects.hpp"
+
+namespace oitbench {
+
+using Defines = std::vector<std::pair<std::string, std::string>>;
+
+struct AssembledSource {
+  std::string text;
+  std::vector<std::string> files;  // index = GLSL source-string number used in #line
+};
+
+struct ShaderStage {
+  GLenum stage;
+  std::string path;  // relative to the shader root, e.g. "occupancy/occupancy.frag"
+};
+
+class ShaderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ShaderLibrary {
+ public:
+  explicit ShaderLibrary(std::filesystem::path root, std::string version = "450 core");
+
+  const std::filesystem::path& root() const { return root_; }
+
+  // Throws ShaderError for a missing file or an include cycle.
+  AssembledSource assemble(const std::string& path, const Defines& defines) const;
+  // Assembles from text already in memory (tests, generated code); includes resolve from the root.
+  AssembledSource assemble_text(const std::string& name, const std::string& text, const Defines& defines) const;
+
+  // Compiles and links; throws ShaderError whose message holds the mapped log and the defines.
+  gl::Program build(const std::vector<ShaderStage>& stages, const Defines& defines) const;
+
+ private:
+  std::filesystem::path root_;
+  std::string version_;
+};
+
+// Rewrites driver log locations ("0:12(3):" Mesa, "0(12) :" NVIDIA/AMD) into "file:line:".
+std::string map_shader_log(const std::string& log, const AssembledSource& source);
+std::string format_defines(const Defines& defines);
+
+}  // namespace oitbench
