@@ -159,13 +159,14 @@ class Runner {
     std::vector<Planned> plan;
     for (const auto& r : requests) {
       Experiment* e = registry_.find(r.experiment);
+      const bool quick = opt_.quick || r.quick;
       Resolution res = opt_.resolution ? *opt_.resolution
                        : r.resolution  ? *r.resolution
-                       : opt_.quick    ? e->quick_resolution()
+                       : quick         ? e->quick_resolution()
                                        : e->default_resolution();
-      int reps = opt_.reps_given ? opt_.reps : r.reps.value_or(opt_.quick ? std::min(opt_.reps, 3) : opt_.reps);
+      int reps = opt_.reps_given ? opt_.reps : r.reps.value_or(quick ? std::min(opt_.reps, 3) : opt_.reps);
       int warmup = opt_.warmup_given ? opt_.warmup : r.warmup.value_or(opt_.warmup);
-      plan.push_back({e, res, reps, warmup, expand_grid(registry_.params_of(*e), r.overrides, opt_.quick)});
+      plan.push_back({e, res, reps, warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
       total_cases_ += plan.back().cases.size();
     }
     start_ = Clock::now();

@@ -17,6 +17,7 @@ struct RunRequest {
   std::map<std::string, std::vector<std::string>> overrides;  // --set NAME=V1,V2
   std::optional<Resolution> resolution;
   std::optional<int> reps, warmup;
+  bool quick = false;  // this request uses the experiment's --quick grid and resolution
 };
 
 struct RunOptions {
