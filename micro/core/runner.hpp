@@ -35,6 +35,7 @@ struct RunOptions {
   bool progress = true;
   std::string preset_name;       // recorded in each row
   std::string shader_root;       // where shaders/ lives
+  bool program_cache = true;     // reuse linked programs (glGetProgramBinary) across runs
 };
 
 // The CSV columns a run writes: fixed base columns, recorded environment, every registered
