@@ -435,6 +435,9 @@ class Runner {
         waitpid(pid, &status, 0);
         break;
       }
+      // The child is watched here (killed at --timeout); the in-process watchdog must not end the
+      // whole run first while this process only waits.
+      heartbeat();
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     heartbeat();
