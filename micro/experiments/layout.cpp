@@ -149,7 +149,7 @@ class LayoutExperiment final : public Experiment {
   }
   Resolution default_resolution() const override { return {800, 800}; }  // the thesis's
   Resolution quick_resolution() const override { return {128, 128}; }
-  int max_interleave() const override { return 4; }
+  int max_interleave() const override { return 6; }  // up to 82 MB of nodes each at 800x800, n=16
   std::string unsupported_reason(const GlInfo&, const ParamSet& p) const override {
     auto l = StorageLayout::parse(p.get("layout"));
     if (l.kind == StorageLayout::Kind::Interleaved && p.get_int("nodes") % l.align != 0)
