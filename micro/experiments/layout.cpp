@@ -20,14 +20,6 @@ std::uint32_t layout_node_value(int x, int y, int i) {
          1u;
 }
 
-// A framebuffer without attachments: the workload's only output is the storage.
-gl::Framebuffer empty_framebuffer(int width, int height) {
-  auto fbo = gl::make_framebuffer();
-  glNamedFramebufferParameteri(fbo.get(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-  glNamedFramebufferParameteri(fbo.get(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
-  return fbo;
-}
-
 class LayoutCase final : public CaseInstance {
  public:
   LayoutCase(const ParamSet& p, CaseContext& ctx)
@@ -38,7 +30,7 @@ class LayoutCase final : public CaseInstance {
         width_(ctx.width()),
         height_(ctx.height()),
         storage_(layout_, width_, height_, nodes_),
-        fbo_(empty_framebuffer(width_, height_)),
+        fbo_(storage_only_framebuffer(width_, height_)),
         vao_(gl::make_vertex_array()) {
     Defines defines = layout_.defines(width_, height_, nodes_);
     if (p.get("order") == "scattered") defines.push_back({"ORDER_SCATTERED", ""});

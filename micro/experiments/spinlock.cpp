@@ -38,13 +38,6 @@ gl::Texture r32ui_image(int width, int height) {
   return t;
 }
 
-gl::Framebuffer empty_framebuffer(int width, int height) {
-  auto fbo = gl::make_framebuffer();
-  glNamedFramebufferParameteri(fbo.get(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-  glNamedFramebufferParameteri(fbo.get(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
-  return fbo;
-}
-
 class SpinlockCase final : public CaseInstance {
  public:
   SpinlockCase(const ParamSet& p, CaseContext& ctx)
@@ -57,7 +50,7 @@ class SpinlockCase final : public CaseInstance {
         locks_(r32ui_image(width_, height_)),
         counts_(r32ui_image(width_, height_)),
         stats_(gl::make_buffer()),
-        fbo_(empty_framebuffer(width_, height_)),
+        fbo_(storage_only_framebuffer(width_, height_)),
         vao_(gl::make_vertex_array()) {
     std::string variant = p.get("variant");
     std::string define;

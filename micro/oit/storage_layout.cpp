@@ -159,6 +159,13 @@ std::vector<StorageNode> StorageResources::read_back() const {
   return out;
 }
 
+gl::Framebuffer storage_only_framebuffer(int width, int height) {
+  auto fbo = gl::make_framebuffer();
+  glNamedFramebufferParameteri(fbo.get(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+  glNamedFramebufferParameteri(fbo.get(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+  return fbo;
+}
+
 void StorageResources::barrier() {
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }

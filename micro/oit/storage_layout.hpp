@@ -53,4 +53,8 @@ class StorageResources {
   gl::Texture texture_;  // texture3d: the storage; texbuffer: the read view of buffer_
 };
 
+// A framebuffer without attachments for passes whose only output is the storage (rasterises a
+// width x height screen, writes no colour).
+gl::Framebuffer storage_only_framebuffer(int width, int height);
+
 }  // namespace oitbench
