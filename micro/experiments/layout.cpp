@@ -134,14 +134,16 @@ class LayoutExperiment final : public Experiment {
                     ParamSpec::Kind::Integer, 1, 4096};
     ParamSpec order{"order", "store order: sequential, or scattered (a per-fragment rotation, like UMLAB's writes)",
                     {"sequential"}, {}, {"sequential", "scattered"}};
-    return {layout, nodes, layers, draws, order};
+    // The compared parameter last: the grid's innermost loop, so one interleaved group holds all layouts.
+    return {nodes, layers, draws, order, layout};
   }
   std::vector<std::string> metric_columns() const override {
     return {"lost_updates", "lost_pixels", "inconsistent_nodes"};
   }
   Resolution default_resolution() const override { return {800, 800}; }  // the thesis's
   Resolution quick_resolution() const override { return {128, 128}; }
-  int max_interleave() const override { return 6; }  // up to 82 MB of nodes each at 800x800, n=16
+  // All 15 layouts of one grid point interleaved (paired comparison): up to 82 MB each at 800x800, n=16.
+  int max_interleave() const override { return 15; }
   std::string unsupported_reason(const GlInfo&, const ParamSet& p) const override {
     auto l = StorageLayout::parse(p.get("layout"));
     if (l.kind == StorageLayout::Kind::Interleaved && p.get_int("nodes") % l.align != 0)

@@ -183,7 +183,8 @@ class SpinlockExperiment final : public Experiment {
                     ParamSpec::Kind::Integer, 1, 64};
     ParamSpec cap{"spin_cap", "attempts before a fragment gives up (its update is lost and counted)", {"65536"}, {},
                   {}, ParamSpec::Kind::Integer, 1, 1 << 30};
-    return {variant, layers, draws, cap};
+    // The compared parameter last: the variants of one grid point run one after another.
+    return {layers, draws, cap, variant};
   }
   std::vector<std::string> metric_columns() const override {
     return {"lost_updates", "capped_updates", "mismatched_pixels", "lock_extension"};

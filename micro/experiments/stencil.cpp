@@ -173,7 +173,8 @@ class StencilExperiment final : public Experiment {
                     32};
     ParamSpec layers{"layers", "transparent layers per covered pixel (at most nodes)", {"4"}, {"4"}, {},
                      ParamSpec::Kind::Integer, 1, 32};
-    return {variant, coverage, resolve, nodes, layers};
+    // The compared parameter last: stencil and no-stencil of one grid point are interleaved together.
+    return {coverage, resolve, nodes, layers, variant};
   }
   std::vector<std::string> metric_columns() const override {
     return {"mismatched_pixels", "touched_outside", "covered_pixels"};
