@@ -1,0 +1,35 @@
+// insert on the embedded default: every listing matches the CPU replay exactly, and the validator
+// fails on a broken result.
+#include "support/test_support.hpp"
+
+namespace oitbench::test {
+
+class Insert : public GlTest {};
+
+constexpr Resolution kSmall{32, 32};
+
+TEST_F(Insert, EveryListingMatchesTheCpuReplay) {
+  for (const char* variant : {"early-out", "no-early-out", "two-moves"})
+    for (const char* keys : {"random", "front", "back"})
+      for (const char* size : {"4", "32"}) {
+        auto v = run_case("insert", {{"variant", variant}, {"keys", keys}, {"size", size}, {"repeat", "9"}}, kSmall);
+        EXPECT_TRUE(v.valid) << variant << " keys=" << keys << " size=" << size << ": " << v.reason;
+      }
+}
+
+TEST_F(Insert, LocalMemoryFormMatchesToo) {
+  for (const char* variant : {"early-out", "two-moves"}) {
+    auto v = run_case("insert", {{"variant", variant}, {"memory", "local"}, {"size", "12"}, {"repeat", "5"}}, kSmall);
+    EXPECT_TRUE(v.valid) << variant << ": " << v.reason;
+  }
+}
+
+TEST_F(Insert, ValidatorCatchesAChangedPayload) {
+  auto v = run_case("insert", {{"variant", "early-out"}, {"size", "8"}, {"repeat", "3"}, {"fault", "wrong-result"}},
+                    kSmall);
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.metrics.at("mismatched_pixels"), "1");
+  EXPECT_NE(v.reason.find("pixel (1,1)[7]"), std::string::npos) << v.reason;
+}
+
+}  // namespace oitbench::test
