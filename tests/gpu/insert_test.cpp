@@ -18,10 +18,21 @@ TEST_F(Insert, EveryListingMatchesTheCpuReplay) {
 }
 
 TEST_F(Insert, LocalMemoryFormMatchesToo) {
-  for (const char* variant : {"early-out", "two-moves"}) {
+  for (const char* variant : {"no-early-out", "two-moves"}) {
     auto v = run_case("insert", {{"variant", variant}, {"memory", "local"}, {"size", "12"}, {"repeat", "5"}}, kSmall);
     EXPECT_TRUE(v.valid) << variant << ": " << v.reason;
   }
+}
+
+// Mesa 22.3.6 llvmpipe loses the swaps of Listing 4.8's loop (break before the swap) when the
+// array is dynamically indexed (memory=local); the register form is correct. The validator must
+// report it; a driver that compiles it correctly passes.
+TEST_F(Insert, EarlyOutLocalIsValidatedNotTrusted) {
+  auto v = run_case("insert", {{"variant", "early-out"}, {"memory", "local"}, {"keys", "back"}, {"size", "8"},
+                               {"repeat", "1"}},
+                    kSmall);
+  if (!v.valid) RecordProperty("early_out_local_driver_bug", v.reason);
+  EXPECT_TRUE(v.valid || gl().is_software_renderer()) << "early-out local invalid on a hardware driver: " << v.reason;
 }
 
 TEST_F(Insert, ValidatorCatchesAChangedPayload) {

@@ -21,6 +21,10 @@ TEST_F(Sort, EveryAlgorithmSortsInItsMemoryForms) {
           (std::string(variant) == "rbs" && std::string(memory) == "local"))
         continue;  // the forms that do not exist (see the next test)
       for (const char* n : {"4", "13", "32"}) {
+        // Unrolled 32-element register forms JIT for 5-30 s each on llvmpipe: n=32 in registers only
+        // for the two the thesis and Knowles single out.
+        bool slow_jit = std::string(n) == "32" && std::string(memory) == "registers";
+        if (slow_jit && std::string(variant) != "insertion-v2" && std::string(variant) != "rbs") continue;
         const char* keys = std::string(n) == "13" ? "duplicates" : "random";
         auto v = run_case("sort", {{"variant", variant}, {"memory", memory}, {"n", n}, {"keys", keys}}, kSmall);
         EXPECT_TRUE(v.valid) << variant << " memory=" << memory << " n=" << n << " keys=" << keys << ": " << v.reason;
@@ -87,9 +91,10 @@ TEST_F(Sort, ImpossibleFormsAreUnsupportedWithAReason) {
       ++ok;
     }
   }
-  // Of 3 variants x 2 memories x 2 assigns: merge+registers, rbs+local, and every assign=loop are impossible.
-  EXPECT_EQ(ok, 3);
-  EXPECT_EQ(unsupported, 9);
+  // Of 3 variants x 2 memories x 2 assigns, merge+registers, rbs+local and every assign=loop are
+  // impossible: 4 cases run.
+  EXPECT_EQ(ok, 4);
+  EXPECT_EQ(unsupported, 8);
 }
 
 }  // namespace oitbench::test
