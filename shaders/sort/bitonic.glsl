@@ -4,6 +4,8 @@
 // next power of two, so any size works. Loops count in log2 so the unroller sees additive bounds.
 #include "frags.glsl"
 
+#define SORT_ALGORITHM sort_bitonic
+
 void sort_bitonic() {
   for (int log_k = 1; log_k <= SORT_SIZE_LOG2; ++log_k) {
     int k = 1 << log_k;

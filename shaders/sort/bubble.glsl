@@ -2,6 +2,8 @@
 // without swaps); without it every pass runs (Table A.3 compares the two).
 #include "frags.glsl"
 
+#define SORT_ALGORITHM sort_bubble
+
 void sort_bubble() {
   for (int n = SORT_SIZE; n > 1; --n) {
     bool sorted = true;

@@ -6,6 +6,8 @@
 //   SORT_ASSIGN_IF_ELSE  an if / else-if chain with one constant-index arm per element
 // Without a choice, the listing's own direct write.
 #include "frags.glsl"
+
+#define SORT_ALGORITHM sort_insertion_naive
 #include "unroll.glsl"
 
 #if !defined(SORT_ASSIGN_LOOP) && !defined(SORT_ASSIGN_SWITCH) && !defined(SORT_ASSIGN_IF_ELSE)

@@ -2,6 +2,8 @@
 // Listing 4.7 - two consecutive loops per element. Diff against insertion_naive.glsl: only line 9 differs.
 #include "frags.glsl"
 
+#define SORT_ALGORITHM sort_insertion_v1
+
 void sort_insertion_v1() {
   for (int i = 1; i < SORT_SIZE; ++i) {
     SORT_T key = SORT_AT(i);

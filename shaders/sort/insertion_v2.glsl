@@ -3,6 +3,8 @@
 // once both loops are unrolled.
 #include "frags.glsl"
 
+#define SORT_ALGORITHM sort_insertion_v2
+
 void sort_insertion_v2() {
   for (int i = 1; i < SORT_SIZE; ++i)
     for (int j = i; j > 0 && SORT_GREATER(j - 1, j); --j) SORT_SWAP(j - 1, j);

@@ -2,6 +2,8 @@
 // merge cursors index the arrays by data, so there is no register form: memory=local only.
 #include "frags.glsl"
 
+#define SORT_ALGORITHM sort_merge
+
 SORT_T merge_tmp[SORT_N];
 
 void sort_merge() {

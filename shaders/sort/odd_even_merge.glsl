@@ -3,6 +3,8 @@
 // Loops count in log2 so the unroller sees additive bounds.
 #include "frags.glsl"
 
+#define SORT_ALGORITHM sort_odd_even_merge
+
 void sort_odd_even_merge() {
   for (int log_p = 0; log_p < SORT_SIZE_LOG2; ++log_p) {
     int p = 1 << log_p;

@@ -8,6 +8,8 @@
 // RBS_INSERT_j moves element j down until it is in place: a nest of j compare-and-swaps.
 #include "frags.glsl"
 
+#define SORT_ALGORITHM sort_rbs
+
 #if SORT_N > 32
 #error "RS sorts one block of at most 32 fragments"
 #endif

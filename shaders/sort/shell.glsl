@@ -7,10 +7,13 @@
 // there. sort_shell_offset is the same algorithm in Listing 4.11's shape (j trails the hole by one
 // gap: `a[j + gap] = a[j]` ... `a[j + gap] = key`), which llvmpipe compiles correctly.
 #include "frags.glsl"
+#include "shell_gaps.glsl"
 
-const int shell_gaps[4] = int[4](20, 9, 4, 1);
-
-int shell_start_gap(int size) { return size > 20 ? 0 : (size > 9 ? 1 : (size > 4 ? 2 : 3)); }
+#if defined(SORT_SHELL_OFFSET)
+#define SORT_ALGORITHM sort_shell_offset
+#else
+#define SORT_ALGORITHM sort_shell
+#endif
 
 void sort_shell() {
   for (int gap_idx = shell_start_gap(SORT_SIZE); gap_idx < 4; ++gap_idx) {

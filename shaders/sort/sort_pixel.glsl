@@ -1,11 +1,11 @@
 // One pixel's work, shared by the fragment and compute entry points: load its SORT_N fragments,
-// sort them with SORT_ALGORITHM, write them back.
+// sort them with the sort chosen by SORT_USE_<NAME> (its file names it SORT_ALGORITHM), write them back.
 #include "../common/oitbench.glsl"
 #include "frags.glsl"
 #include "algorithms.glsl"
 
 #ifndef SORT_ALGORITHM
-#error "define SORT_ALGORITHM (the sort function to call)"
+#error "define one SORT_USE_<NAME> of algorithms.glsl"
 #endif
 
 void sort_pixel(ivec2 p) {

@@ -11,10 +11,17 @@ constexpr Resolution kSmall{32, 32};
 TEST_F(Insert, EveryListingMatchesTheCpuReplay) {
   for (const char* variant : {"early-out", "no-early-out", "two-moves"})
     for (const char* keys : {"random", "front", "back"})
-      for (const char* size : {"4", "32"}) {
+      for (const char* size : {"4", "13"}) {
         auto v = run_case("insert", {{"variant", variant}, {"keys", keys}, {"size", size}, {"repeat", "9"}}, kSmall);
         EXPECT_TRUE(v.valid) << variant << " keys=" << keys << " size=" << size << ": " << v.reason;
       }
+}
+
+TEST_F(Insert, ThirtyTwo) {
+  for (const char* variant : {"early-out", "no-early-out", "two-moves"}) {
+    auto v = run_case("insert", {{"variant", variant}, {"keys", "random"}, {"size", "32"}, {"repeat", "20"}}, kSmall);
+    EXPECT_TRUE(v.valid) << variant << ": " << v.reason;
+  }
 }
 
 TEST_F(Insert, LocalMemoryFormMatchesToo) {
