@@ -50,6 +50,9 @@ class OitCase final : public CaseInstance {
  public:
   OitCase(const ParamSet& p, CaseContext& ctx)
       : ctx_(ctx),
+        width_(ctx.width()),
+        height_(ctx.height()),
+        wrong_result_(ctx.fault() == "wrong-result"),
         technique_(p.get("technique")),
         bma_(technique_.starts_with("BMA-")),
         native_(technique_ == "CPU-NATIVE"),
@@ -110,7 +113,7 @@ class OitCase final : public CaseInstance {
         host_ = lists_->read_back();
       }
       auto t = timer.pass("resolve");
-      resolve_native(host_, scene_.background, 0, ctx_.fault() == "wrong-result", native_out_);
+      resolve_native(host_, scene_.background, 0, wrong_result_, native_out_);
       return;
     }
     if (!bma_) {
@@ -127,7 +130,7 @@ class OitCase final : public CaseInstance {
       lists_->bind();
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, histogram_.get());
       glUseProgram(count_.get());
-      glDispatchCompute((ctx_.width() + 7) / 8, (ctx_.height() + 7) / 8, 1);
+      glDispatchCompute((width_ + 7) / 8, (height_ + 7) / 8, 1);
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
       glGetNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
     }
@@ -212,7 +215,7 @@ class OitCase final : public CaseInstance {
                          " were truncated");
     std::vector<float> rgba = native_ ? native_out_ : target_.read_rgba32f();
     auto ref = composite_reference(host, scene_.background);
-    auto err = compare_with_reference(rgba, ref, stats, scene_.background, ctx_.width(), kTolerance);
+    auto err = compare_with_reference(rgba, ref, stats, scene_.background, width_, kTolerance);
     m["max_abs_error"] = fmt(err.max_abs_error);
     m["rmse"] = fmt(err.rmse);
     m["bad_pixels"] = std::to_string(err.bad_pixels);
@@ -280,7 +283,9 @@ class OitCase final : public CaseInstance {
   }
   void end_resolve() { glDisable(GL_BLEND); }
 
-  CaseContext& ctx_;
+  CaseContext ctx_;  // a copy: the runner's shader library outlives the case (intervals compile on demand)
+  int width_, height_;
+  bool wrong_result_;
   std::string technique_;
   bool bma_, native_;
   int block_;
