@@ -27,7 +27,7 @@ std::vector<double> composite_reference(const HostLists& lists, glm::vec3 backgr
 // The GPU resolves' output convention: rgb composited onto the background, alpha = how many times
 // the pixel was resolved (additive blending), so uncovered pixels stay (0,0,0,0).
 // CPU-NATIVE: the same resolve on `threads` native threads (0: all cores); sorts far-to-near and
-// blends back to front in float, like the shaders. `perturb` changes pixel (1,1) (fault=wrong-result).
+// blends back to front in float, like the shaders. `perturb` changes the diagonal x == y (fault=wrong-result).
 void resolve_native(const HostLists& lists, glm::vec3 background, int threads, bool perturb, std::vector<float>& out);
 
 struct ImageError {

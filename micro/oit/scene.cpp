@@ -187,7 +187,7 @@ void gen_planes(Builder& b, const json& p, const Material& m) {
 // A tangle of thin tubes inside a sphere: `strands` random walks of `segments` steps, each step a
 // `sides`-sided open tube. Generated strand by strand, step by step (a modelling package's order).
 void gen_hairball(Builder& b, const json& p, const Material& m) {
-  int strands = static_cast<int>(param(p, "strands", 600)), segments = static_cast<int>(param(p, "segments", 100));
+  int strands = static_cast<int>(param(p, "strands", 500)), segments = static_cast<int>(param(p, "segments", 100));
   int sides = static_cast<int>(param(p, "sides", 3));
   double step = param(p, "segment_length", 0.1), r = param(p, "tube_radius", 0.02), radius = param(p, "radius", 1.0);
   double wiggle = param(p, "wiggle", 0.5);
@@ -227,7 +227,7 @@ void gen_hairball(Builder& b, const json& p, const Material& m) {
 // Camera-facing billboards in a rising plume: `count` squares of side `size`, Gaussian about the
 // column (`spread` sideways, `height` up), alpha falling off radially (soft material).
 void gen_smoke(Builder& b, const json& p, const Material& m, const View& view) {
-  int count = static_cast<int>(param(p, "count", 1500));
+  int count = static_cast<int>(param(p, "count", 510));
   double size = param(p, "size", 0.5), spread = param(p, "spread", 0.25), height = param(p, "height", 1.6);
   Rng rng(static_cast<unsigned long long>(param(p, "seed", 2)));
   for (int i = 0; i < count; ++i) {
