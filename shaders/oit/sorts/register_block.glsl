@@ -1,19 +1,21 @@
 // Register-based block sort, RBS-L (Knowles 2014, listings 3-6). Fragments are read straight from
 // the list into blocks of RBS_M registers, each block is sorted in registers (RS: an insertion
-// network whose loops have constant bounds, so the compiler unrolls them and every index is a
-// constant), written to local memory, and the MAX_K blocks are k-way merged, blending during the
+// network whose inner loops have constant bounds, so the compiler unrolls them and every index is
+// a constant), written to local memory, and the MAX_K blocks are k-way merged, blending during the
 // merge. A pixel that fits one block (MAX_K == 1) never touches local memory.
 // Expects: RBS_M, MAX_K (MAX_FRAGS = RBS_M * MAX_K), blend_over(vec3, uvec2), background.
 #pragma optionNV(unroll all)
 uvec2 registers[RBS_M];
 
-// RS: insertion as swaps, the inner loop unrolled for each j; `moving` is the early exit.
+// RS (listing 4): insertion as swaps. The inner loop has constant bounds, so the compiler unrolls
+// it and every index into `registers` is a constant; the `i <= j` guard shrinks the network to the
+// pixel's count and `moving` stops an insertion once its element is in place.
 void register_sort(int m) {
-  for (int j = 1; j < RBS_M; ++j) {
-    if (j < m) {
-      bool moving = true;
-      for (int i = j; i > 0; --i) {
-        if (moving && registers[i - 1].y < registers[i].y) {
+  for (int j = 1; j < m; ++j) {
+    bool moving = true;
+    for (int i = RBS_M - 1; i > 0; --i) {
+      if (i <= j && moving) {
+        if (registers[i - 1].y < registers[i].y) {
           uvec2 t = registers[i - 1];
           registers[i - 1] = registers[i];
           registers[i] = t;
