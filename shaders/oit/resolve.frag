@@ -8,6 +8,11 @@
 #include "../common/oitbench.glsl"
 #include "storage/linked_list.glsl"
 
+// Early tests: BMA's stencil mask must stop an interval's program before it runs on the other
+// intervals' pixels; without this a driver may test the stencil after the shader (it reads
+// images and may discard), and every interval pass would cost a full-screen resolve.
+layout(early_fragment_tests) in;
+
 uniform vec3 background;
 uniform int zero;  // always 0 (fault hooks)
 layout(location = 0) out vec4 fragColour;
