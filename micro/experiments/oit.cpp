@@ -210,7 +210,8 @@ class OitCase final : public CaseInstance {
       for (size_t p = 0; p < stats.depth.size(); ++p) wrong += host.counts[p] != stats.depth[p];
       if (wrong) problems.push_back(std::to_string(wrong) + " pixel(s) whose BMA count differs from their list length");
     }
-    if (truncated)
+    m["tied_pixels"] = std::to_string(stats.tied_pixels);
+    if (truncated && !native_)
       problems.push_back(std::to_string(truncated) + " pixel(s) deeper than MAX_FRAGS=" + std::to_string(max_frags_) +
                          " were truncated");
     std::vector<float> rgba = native_ ? native_out_ : target_.read_rgba32f();
@@ -334,7 +335,7 @@ class OitExperiment final : public Experiment {
   std::vector<std::string> metric_columns() const override {
     return {"polygons",         "total_fragments", "peak_depth",     "mean_depth",    "fragments_per_s",
             "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
-            "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors"};
+            "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels"};
   }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {128, 128}; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "core/registry.hpp"
 
@@ -46,6 +47,8 @@ void FragmentLists::bind() const {
 int FragmentLists::capture(GLuint program, const std::function<void()>& draw) {
   int rerenders = 0;
   const unsigned end = kListEnd, zero = 0;
+  // Shrinking happens before a frame, never after one: the lists just captured live in the pool.
+  if (shrink_to_) allocate(std::exchange(shrink_to_, 0));
   for (;;) {
     glClearTexImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
     if (with_counts_) glClearTexImage(counts_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -61,7 +64,7 @@ int FragmentLists::capture(GLuint program, const std::function<void()>& draw) {
     fragments_ = count;
     if (count <= pool_) {
       // Steady state: keep the pool within 1.25x of what the frame needed (sized from this count).
-      if (pool_ > count + count / 4 && count > 0) allocate(count + count / 8);
+      if (pool_ > count + count / 4 && count > 0) shrink_to_ = count + count / 8;
       break;
     }
     // Overflowed: nodes past the pool were not written (nor linked); render the frame again.

@@ -46,6 +46,7 @@ class FragmentLists {
   int width_, height_;
   bool with_counts_;
   size_t pool_ = 0, fragments_ = 0;
+  size_t shrink_to_ = 0;  // pool for the next frame when this one needed much less
   GLint max_texels_ = 0;
   gl::Texture heads_, counts_, nodes_view_, next_view_;
   gl::Buffer nodes_, next_, counter_;

@@ -17,6 +17,8 @@ struct ListStats {
   unsigned peak_depth = 0;
   double mean_depth = 0;             // over covered pixels
   std::vector<unsigned> depth;       // per pixel
+  std::vector<bool> tied;            // per pixel: fragments of different colours at exactly the same depth
+  size_t tied_pixels = 0;
   std::string error;                 // a broken list (cycle, index outside the pool), else empty
 };
 ListStats list_stats(const HostLists& lists);
@@ -34,6 +36,7 @@ struct ImageError {
   double max_abs_error = 0, rmse = 0;
   size_t bad_pixels = 0;         // above the tolerance
   size_t visit_errors = 0;       // covered pixels not resolved exactly once, or uncovered ones resolved
+  size_t tied_skipped = 0;       // pixels with equal-depth fragments of different colours: any order is exact
   std::string first_bad;         // "pixel (x,y): got (r,g,b), reference (r,g,b)"
 };
 // Compares a resolve's RGBA output (see above) with the reference; `tolerance` per channel.

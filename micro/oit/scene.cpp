@@ -6,6 +6,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <sstream>
 
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 namespace oitbench::oit {
 
 namespace {
@@ -105,7 +109,7 @@ class Node {
   std::vector<std::string> keys_;
 };
 
-const std::vector<std::string> kGenerators = {"planes", "hairball", "smoke"};
+const std::vector<std::string> kGenerators = {"planes", "hairball", "smoke", "model"};
 
 SubmitOrder parse_order(const Node& n) {
   auto s = n.str();
@@ -248,6 +252,71 @@ void gen_smoke(Builder& b, const json& p, const Material& m, const View& view) {
   }
 }
 
+// A model file read with assimp (triangulated, node transforms applied), scaled into the unit
+// sphere, repeated on a `grid` x `grid` x `grid` lattice `spacing` apart (an engine grid gives a deep
+// scene from a small model). Each triangle is a primitive; colours mix the scene material with the
+// model's diffuse colours.
+void gen_model(Builder& b, const json& p, const Material& m, const std::string& file) {
+  Assimp::Importer importer;
+  const aiScene* sc = importer.ReadFile(file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                  aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (!sc || !sc->mRootNode) throw SceneError(file + ": assimp could not read the model: " + importer.GetErrorString());
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (unsigned i = 0; i < sc->mNumMeshes; ++i)
+    for (unsigned v = 0; v < sc->mMeshes[i]->mNumVertices; ++v) {
+      const aiVector3D& q = sc->mMeshes[i]->mVertices[v];
+      lo = glm::min(lo, glm::vec3(q.x, q.y, q.z));
+      hi = glm::max(hi, glm::vec3(q.x, q.y, q.z));
+    }
+  if (lo.x > hi.x) throw SceneError(file + ": the model has no vertices");
+  glm::vec3 centre = (lo + hi) * 0.5f;
+  float scale = 2.0f / std::max(glm::length(hi - lo), 1e-6f);
+  int grid = std::max(1, static_cast<int>(param(p, "grid", 1)));
+  float spacing = static_cast<float>(param(p, "spacing", 1.0));
+  float half = 0.5f * spacing * static_cast<float>(grid - 1);
+  for (int gz = 0; gz < grid; ++gz)
+    for (int gy = 0; gy < grid; ++gy)
+      for (int gx = 0; gx < grid; ++gx) {
+        glm::vec3 offset(gx * spacing - half, gy * spacing - half, gz * spacing - half);
+        for (unsigned i = 0; i < sc->mNumMeshes; ++i) {
+          const aiMesh* mesh = sc->mMeshes[i];
+          if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+          glm::vec3 diffuse(1.0f);
+          aiColor4D d;
+          if (sc->mMaterials && aiGetMaterialColor(sc->mMaterials[mesh->mMaterialIndex], AI_MATKEY_COLOR_DIFFUSE, &d) == AI_SUCCESS)
+            diffuse = glm::vec3(d.r, d.g, d.b);
+          glm::vec4 c(glm::mix(m.colour, diffuse, 0.5f), m.alpha);
+          unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
+          for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+            const aiVector3D& q = mesh->mVertices[v];
+            b.vertex((glm::vec3(q.x, q.y, q.z) - centre) * scale + offset, c);
+          }
+          for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            const aiFace& face = mesh->mFaces[f];
+            if (face.mNumIndices != 3) continue;
+            b.begin();
+            unsigned a = first + face.mIndices[0], bb = first + face.mIndices[1], cc = first + face.mIndices[2];
+            b.mesh.indices.insert(b.mesh.indices.end(), {a, bb, cc});
+            b.end((b.mesh.vertices[a].position + b.mesh.vertices[bb].position + b.mesh.vertices[cc].position) / 3.0f);
+          }
+        }
+      }
+}
+
+std::string resolve_model(const SceneDesc& s, const std::string& file) {
+  std::vector<std::filesystem::path> roots = {std::filesystem::path(s.path).parent_path()};
+  if (const char* env = std::getenv("OITBENCH_MODELS")) roots.insert(roots.begin(), env);
+  for (const auto& r : s.model_roots) roots.push_back(r);
+  std::string tried;
+  for (const auto& r : roots) {
+    auto p = r / file;
+    if (std::filesystem::exists(p)) return p.string();
+    tried += (tried.empty() ? "" : ", ") + r.string();
+  }
+  throw SceneError(s.path + ": model file \"" + file + "\" not found in " + tried +
+                   " (set OITBENCH_MODELS, or install Debian's assimp-testmodels)");
+}
+
 }  // namespace
 
 const View& SceneDesc::view(const std::string& n) const {
@@ -275,11 +344,16 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     throw SceneError(path + ":" + line_col_at(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + what);
   }
   Node root(j, path, text, {});
-  root.expect_object({"name", "description", "background", "effects", "materials", "objects", "views"});
+  root.expect_object({"name", "description", "background", "effects", "materials", "objects", "views", "model_roots"});
   SceneDesc s;
   s.path = path;
   s.name = root.has("name") ? root.child("name").str() : std::filesystem::path(path).stem().string();
   if (root.has("description")) s.description = root.child("description").str();
+  if (root.has("model_roots")) {
+    auto r = root.child("model_roots");
+    if (!r.raw().is_array()) r.fail("expected an array of folders");
+    for (size_t i = 0; i < r.raw().size(); ++i) s.model_roots.push_back(r.element(i).str());
+  }
   if (root.has("background")) s.background = root.child("background").vec3(0, 1);
   if (root.has("effects")) {
     auto e = root.child("effects");
@@ -311,12 +385,16 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
   if (!objs.raw().is_array() || objs.raw().empty()) objs.fail("expected a non-empty array of objects");
   for (size_t i = 0; i < objs.raw().size(); ++i) {
     auto o = objs.element(i);
-    o.expect_object({"generator", "material", "params", "small"});
+    o.expect_object({"generator", "material", "params", "small", "file"});
     SceneObject obj;
-    if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, smoke");
+    if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, smoke, model");
     obj.generator = o.child("generator").str();
     if (std::find(kGenerators.begin(), kGenerators.end(), obj.generator) == kGenerators.end())
-      o.child("generator").fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball or smoke");
+      o.child("generator").fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, smoke or model");
+    if (obj.generator == "model") {
+      if (!o.has("file")) o.fail("expected \"file\": the model file (searched in model_roots)");
+      obj.file = o.child("file").str();
+    }
     if (!o.has("material")) o.fail("expected \"material\": the name of one of the scene's materials");
     obj.material = o.child("material").str();
     bool known = std::any_of(s.materials.begin(), s.materials.end(), [&](const Material& m) { return m.name == obj.material; });
@@ -325,7 +403,7 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
       if (!o.has(key)) continue;
       auto pn = o.child(key);
       pn.expect_object({"count", "half_size", "depth", "strands", "segments", "sides", "segment_length",
-                        "tube_radius", "radius", "wiggle", "seed", "size", "spread", "height"});
+                        "tube_radius", "radius", "wiggle", "seed", "size", "spread", "height", "grid", "spacing"});
       for (const auto& [pk, pv] : pn.raw().items()) {
         (void)pv;
         pn.child(pk).number(0, 1e7);
@@ -394,6 +472,7 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail) {
     const Material& m = scene.material(o.material);
     if (o.generator == "planes") gen_planes(b, p, m);
     else if (o.generator == "hairball") gen_hairball(b, p, m);
+    else if (o.generator == "model") gen_model(b, p, m, resolve_model(scene, o.file));
     else gen_smoke(b, p, m, view);
   }
   if (view.order == SubmitOrder::AsGenerated) return std::move(b.mesh);

@@ -28,6 +28,15 @@ TEST_F(Oit, CaptureLosesNoFragmentAndOverflowRerenders) {
   EXPECT_EQ(v.metrics.at("max_frags"), "32");
 }
 
+TEST_F(Oit, AnOversizedPoolShrinksBeforeTheNextFrameNotAfterIt) {
+  auto p = small("planes", "rev", "BMA-RBS-L");
+  p["initial_pool"] = "1000000";  // ten times what 24 planes at 64x64 need
+  auto v = run_case("oit", p);
+  EXPECT_TRUE(v.valid) << v.reason;
+  EXPECT_EQ(v.metrics.at("overflow_rerenders"), "0");
+  EXPECT_LE(std::stod(v.metrics.at("node_pool")), 1.25 * 24 * 64 * 64);
+}
+
 TEST_F(Oit, EveryResolveMatchesTheCpuReference) {
   for (const char* technique : {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS", "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE"})
     for (auto [scene, view] : {std::pair{"planes", "fwd"}, {"planes", "rev"}, {"hairball", "fwd"}, {"hairball", "rev"}}) {

@@ -78,6 +78,19 @@ TEST(Scene, SemanticErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(msg.find("unknown generator \"teapot\""), std::string::npos) << msg;
 }
 
+TEST(Scene, ModelScenesLoadThroughAssimp) {
+  for (const char* name : {"engine-grid", "house"}) {
+    SceneDesc s = load_scene(name);
+    try {
+      Mesh m = build_mesh(s, s.view("fwd"), Detail::Small);
+      EXPECT_GT(m.polygons(), 1000u) << name;
+    } catch (const SceneError& e) {
+      if (std::string(e.what()).find("not found") != std::string::npos) GTEST_SKIP() << e.what();
+      throw;
+    }
+  }
+}
+
 TEST(Scene, UnknownSceneListsTheScenes) {
   try {
     load_scene("no-such-scene");
