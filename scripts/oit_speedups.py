@@ -7,6 +7,7 @@ import csv
 import sys
 from pathlib import Path
 
+ORDER = ["planes", "hairball", "smoke", "engine-grid", "house"]
 TECHNIQUES = ["BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS", "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE"]
 
 
@@ -20,7 +21,7 @@ def main():
             if r["metric"] == "resolve_speedup_vs_BASE-IS":
                 paper[(r["scene"], r["view"].lower(), r["technique"])] = r["value"]
     res = {(r["scene"], r["view"], r["technique"], r["pass"]): r for r in rows if r["status"] == "ok"}
-    scenes = sorted({(r["scene"], r["view"]) for r in rows}, key=lambda sv: (["planes", "hairball", "smoke"].index(sv[0]) if sv[0] in ["planes", "hairball", "smoke"] else 9, sv[1]))
+    scenes = sorted({(r["scene"], r["view"]) for r in rows}, key=lambda sv: (ORDER.index(sv[0]) if sv[0] in ORDER else 9, sv[1]))
     print("| scene | view | technique | capture ms | resolve ms (MAD) | resolve speedup vs BASE-IS | paper (GTX Titan) | valid | max_abs_error |")
     print("|---|---|---|---|---|---|---|---|---|")
     for scene, view in scenes:
@@ -35,14 +36,14 @@ def main():
             print(f"| {scene} | {view} | {t} | {float(c['median_ms']):.0f} | {float(r['median_ms']):.0f} ({float(r['mad_ms']):.0f}) "
                   f"| {speedup:.2f}x | {p} | {r['valid']} | {float(r['max_abs_error']):.2g} |")
     print()
-    print("| scene | view | polygons | fragments | peak depth | mean depth | MAX_FRAGS | capture fragments/s (BASE-IS) | BMA intervals (top:pixels) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| scene | view | polygons | fragments | peak depth | mean depth | MAX_FRAGS | capture fragments/s (BASE-IS) | tied pixels | BMA intervals (top:pixels) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for scene, view in scenes:
         r = res.get((scene, view, "BASE-IS", "total"))
         b = res.get((scene, view, "BMA-IS", "total"))
         if r:
             print(f"| {scene} | {view} | {r['polygons']} | {r['total_fragments']} | {r['peak_depth']} | {float(r['mean_depth']):.1f} "
-                  f"| {r['max_frags']} | {float(r['fragments_per_s']) / 1e6:.1f} M | {b['bma_intervals'] if b else ''} |")
+                  f"| {r['max_frags']} | {float(r['fragments_per_s']) / 1e6:.1f} M | {r.get('tied_pixels', '')} | {b['bma_intervals'] if b else ''} |")
 
 
 if __name__ == "__main__":
