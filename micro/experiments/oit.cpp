@@ -1,0 +1,356 @@
+// oit: exact order-independent transparency with per-pixel linked lists, resolved by the sorts of
+// Knowles, Leach, Zambetta 2013 (BMA) and 2014 (register-based block sort, RBS), on scenes kept
+// as data (scenes/*.json). Every case is validated against the CPU reference compositor working
+// on the same fragments read back from the GPU.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "core/registry.hpp"
+#include "core/render_target.hpp"
+#include "oit/fragment_lists.hpp"
+#include "oit/gpu_mesh.hpp"
+#include "oit/reference.hpp"
+#include "oit/scene.hpp"
+
+namespace oitbench {
+
+namespace {
+
+using namespace oit;
+
+// 2/255: a fragment's colour is packed to RGBA8 for both the GPU and the reference, so what is
+// left is float vs double blending and the order of equal-depth fragments.
+constexpr double kTolerance = 2.0 / 255.0;
+constexpr int kFirstInterval = 8;  // BMA intervals: 1-8, 9-16, 17-32, ... (Knowles 2014, section 4)
+
+const std::vector<std::string> kTechniques = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS",
+                                              "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE"};
+
+unsigned next_pow2(unsigned v) {
+  unsigned p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+class OitCase final : public CaseInstance {
+ public:
+  OitCase(const ParamSet& p, CaseContext& ctx)
+      : ctx_(ctx),
+        width_(ctx.width()),
+        height_(ctx.height()),
+        wrong_result_(ctx.fault() == "wrong-result"),
+        technique_(p.get("technique")),
+        bma_(technique_.starts_with("BMA-")),
+        native_(technique_ == "CPU-NATIVE"),
+        block_(static_cast<int>(p.get_int("block"))),
+        scene_(load_scene(p.get("scene"))),
+        target_(ctx.width(), ctx.height(), GL_RGBA32F, true) {
+    const View& view = scene_.view(p.get("view"));
+    Mesh mesh = build_mesh(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full);
+    mesh_ = std::make_unique<GpuMesh>(mesh);
+    view_proj_ = view_projection(view, mesh, static_cast<float>(ctx.width()) / ctx.height());
+    size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
+    long long init = p.get_int("initial_pool");
+    lists_ = std::make_unique<FragmentLists>(ctx.width(), ctx.height(), init > 0 ? static_cast<size_t>(init) : pixels * 4,
+                                             bma_);
+    Defines capture_defines;
+    if (bma_) capture_defines.push_back({"STORAGE_COUNTS", ""});
+    capture_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+                         capture_defines);
+    glProgramUniformMatrix4fv(capture_.get(), glGetUniformLocation(capture_.get(), "viewProj"), 1, GL_FALSE,
+                              &view_proj_[0][0]);
+
+    // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
+    // (the next power of two at or above it, as the paper does) before anything is compiled.
+    overflow_rerenders_ += capture();
+    ListStats stats = list_stats(lists_->read_back());
+    long long forced = p.get_int("max_frags");
+    max_frags_ = forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(stats.peak_depth));
+    if (native_) return;
+    if (bma_) {
+      count_ = ctx.build({{GL_COMPUTE_SHADER, "oit/bma_count.comp"}}, {});
+      mask_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/bma_mask.frag"}}, {});
+      histogram_ = gl::make_buffer();
+      glNamedBufferStorage(histogram_.get(), 32 * sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
+      for (unsigned top = kFirstInterval; top <= max_frags_; top *= 2) interval_tops_.push_back(top);
+      // Compile the intervals this view uses now (compile time is not frame time); others on demand.
+      std::vector<bool> used(interval_tops_.size(), false);
+      for (unsigned d : stats.depth)
+        if (d > 0) used[interval_of(d)] = true;
+      interval_programs_.resize(interval_tops_.size());
+      for (size_t i = 0; i < used.size(); ++i)
+        if (used[i]) interval_program(i);
+    } else {
+      base_ = build_resolve(max_frags_);
+    }
+  }
+
+  void run(PassTimer& timer) override {
+    target_.bind();
+    {
+      auto t = timer.pass("capture");
+      auto start = std::chrono::steady_clock::now();
+      overflow_rerenders_ += capture();
+      capture_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    if (native_) {
+      {
+        auto t = timer.pass("readback");
+        host_ = lists_->read_back();
+      }
+      auto t = timer.pass("resolve");
+      resolve_native(host_, scene_.background, 0, wrong_result_, native_out_);
+      return;
+    }
+    if (!bma_) {
+      auto t = timer.pass("resolve");
+      begin_resolve();
+      draw_resolve(base_);
+      end_resolve();
+      return;
+    }
+    std::vector<unsigned> hist(32, 0);
+    {
+      auto t = timer.pass("count");
+      glNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
+      lists_->bind();
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, histogram_.get());
+      glUseProgram(count_.get());
+      glDispatchCompute((width_ + 7) / 8, (height_ + 7) / 8, 1);
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      glGetNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
+    }
+    // Pixels deeper than MAX_FRAGS belong to the last interval (truncated there, and counted).
+    std::vector<unsigned> pixels(interval_tops_.size(), 0);
+    for (size_t i = 0; i < hist.size(); ++i) pixels[std::min(i, pixels.size() - 1)] += hist[i];
+    {
+      auto t = timer.pass("mask");
+      glClearNamedFramebufferiv(target_.framebuffer(), GL_STENCIL, 0, std::array<GLint, 1>{0}.data());
+      glEnable(GL_STENCIL_TEST);
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+      glUseProgram(mask_.get());
+      lists_->bind();
+      for (size_t i = 0; i < interval_tops_.size(); ++i) {
+        if (!pixels[i]) continue;
+        unsigned lo = i == 0 ? 1 : interval_tops_[i] / 2 + 1;
+        unsigned hi = i + 1 == interval_tops_.size() ? 0xFFFFFFFFu : interval_tops_[i];
+        glUniform1ui(glGetUniformLocation(mask_.get(), "lo"), lo);
+        glUniform1ui(glGetUniformLocation(mask_.get(), "hi"), hi);
+        glStencilFunc(GL_ALWAYS, static_cast<GLint>(i + 1), 0xFF);
+        quad_.draw();
+      }
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glDisable(GL_STENCIL_TEST);
+    }
+    auto t = timer.pass("resolve");
+    begin_resolve();
+    glEnable(GL_STENCIL_TEST);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    intervals_run_ = 0;
+    for (size_t i = 0; i < interval_tops_.size(); ++i) {
+      if (!pixels[i]) continue;  // no pixels: the interval's program never runs
+      glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
+      draw_resolve(interval_program(i));
+      ++intervals_run_;
+    }
+    glDisable(GL_STENCIL_TEST);
+    end_resolve();
+    interval_pixels_ = pixels;
+  }
+
+  Validation validate() override {
+    Validation v;
+    HostLists host = native_ ? std::move(host_) : lists_->read_back();
+    ListStats stats = list_stats(host);
+    auto& m = v.metrics;
+    m["polygons"] = std::to_string(mesh_->polygons());
+    m["total_fragments"] = std::to_string(stats.total_fragments);
+    m["peak_depth"] = std::to_string(stats.peak_depth);
+    m["mean_depth"] = fmt(stats.mean_depth);
+    m["max_frags"] = std::to_string(max_frags_);
+    m["node_pool"] = std::to_string(lists_->pool());
+    m["overflow_rerenders"] = std::to_string(overflow_rerenders_);
+    size_t truncated = 0;
+    for (unsigned d : stats.depth) truncated += d > max_frags_;
+    m["truncated_pixels"] = std::to_string(truncated);
+    if (!capture_ms_.empty()) {
+      auto ms = capture_ms_;
+      std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+      m["fragments_per_s"] = fmt(stats.total_fragments / (ms[ms.size() / 2] / 1000.0));
+    }
+    if (bma_) {
+      std::string s;
+      for (size_t i = 0; i < interval_tops_.size(); ++i)
+        if (i < interval_pixels_.size() && interval_pixels_[i])
+          s += (s.empty() ? "" : " ") + std::to_string(interval_tops_[i]) + ":" + std::to_string(interval_pixels_[i]);
+      m["bma_intervals"] = s;
+    }
+    std::vector<std::string> problems;
+    if (!stats.error.empty()) problems.push_back(stats.error);
+    if (stats.total_fragments != lists_->fragments())
+      problems.push_back("the lists hold " + std::to_string(stats.total_fragments) + " fragments but " +
+                         std::to_string(lists_->fragments()) + " were captured (fragments lost)");
+    if (bma_) {
+      size_t wrong = 0;
+      for (size_t p = 0; p < stats.depth.size(); ++p) wrong += host.counts[p] != stats.depth[p];
+      if (wrong) problems.push_back(std::to_string(wrong) + " pixel(s) whose BMA count differs from their list length");
+    }
+    m["tied_pixels"] = std::to_string(stats.tied_pixels);
+    if (truncated && !native_)
+      problems.push_back(std::to_string(truncated) + " pixel(s) deeper than MAX_FRAGS=" + std::to_string(max_frags_) +
+                         " were truncated");
+    std::vector<float> rgba = native_ ? native_out_ : target_.read_rgba32f();
+    auto ref = composite_reference(host, scene_.background);
+    auto err = compare_with_reference(rgba, ref, stats, scene_.background, width_, kTolerance);
+    m["max_abs_error"] = fmt(err.max_abs_error);
+    m["rmse"] = fmt(err.rmse);
+    m["bad_pixels"] = std::to_string(err.bad_pixels);
+    m["visit_errors"] = std::to_string(err.visit_errors);
+    if (err.visit_errors)
+      problems.push_back(std::to_string(err.visit_errors) + " pixel(s) not resolved exactly once (covered) or resolved "
+                         "though uncovered");
+    if (err.bad_pixels)
+      problems.push_back(std::to_string(err.bad_pixels) + " pixel(s) differ from the CPU reference by more than 2/255; first: " +
+                         err.first_bad);
+    v.valid = problems.empty();
+    for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
+    return v;
+  }
+
+ private:
+  int capture() {
+    target_.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    int r = lists_->capture(capture_.get(), [&] { mesh_->draw(); });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    return r;
+  }
+
+  size_t interval_of(unsigned depth) const {
+    size_t i = 0;
+    while (i + 1 < interval_tops_.size() && depth > interval_tops_[i]) ++i;
+    return i;
+  }
+
+  gl::Program build_resolve(unsigned max_frags) {
+    Defines d = {{"MAX_FRAGS", std::to_string(max_frags)}};
+    if (technique_.ends_with("-IS")) d.push_back({"SORT_IS", ""});
+    else if (technique_.ends_with("-IMS")) d.push_back({"SORT_IMS", ""});
+    else {
+      unsigned m = std::min<unsigned>(static_cast<unsigned>(block_), max_frags);
+      d.push_back({"SORT_RBS", ""});
+      d.push_back({"RBS_M", std::to_string(m)});
+      d.push_back({"MAX_K", std::to_string((max_frags + m - 1) / m)});
+    }
+    auto prog = ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}}, d);
+    glProgramUniform3f(prog.get(), glGetUniformLocation(prog.get(), "background"), scene_.background.r,
+                       scene_.background.g, scene_.background.b);
+    glProgramUniform1i(prog.get(), glGetUniformLocation(prog.get(), "zero"), 0);
+    return prog;
+  }
+
+  const gl::Program& interval_program(size_t i) {
+    if (!interval_programs_[i]) interval_programs_[i] = build_resolve(interval_tops_[i]);
+    return *interval_programs_[i];
+  }
+
+  void begin_resolve() {
+    const float clear[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(target_.framebuffer(), GL_COLOR, 0, clear);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);  // alpha accumulates the number of resolves of each pixel
+    lists_->bind();
+  }
+  void draw_resolve(const gl::Program& prog) {
+    glUseProgram(prog.get());
+    quad_.draw();
+  }
+  void end_resolve() { glDisable(GL_BLEND); }
+
+  CaseContext ctx_;  // a copy: the runner's shader library outlives the case (intervals compile on demand)
+  int width_, height_;
+  bool wrong_result_;
+  std::string technique_;
+  bool bma_, native_;
+  int block_;
+  SceneDesc scene_;
+  RenderTarget target_;
+  FullscreenTriangle quad_;
+  std::unique_ptr<GpuMesh> mesh_;
+  glm::mat4 view_proj_;
+  std::unique_ptr<FragmentLists> lists_;
+  gl::Program capture_, base_, count_, mask_;
+  gl::Buffer histogram_;
+  std::vector<unsigned> interval_tops_, interval_pixels_;
+  std::vector<std::optional<gl::Program>> interval_programs_;
+  unsigned max_frags_ = 0;
+  int overflow_rerenders_ = 0, intervals_run_ = 0;
+  std::vector<double> capture_ms_;
+  HostLists host_;
+  std::vector<float> native_out_;
+};
+
+class OitExperiment final : public Experiment {
+ public:
+  std::string name() const override { return "oit"; }
+  std::string description() const override {
+    return "exact OIT (Knowles 2013 BMA, 2014 RBS): per-pixel linked lists captured from a scene file, resolved by "
+           "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor";
+  }
+  std::vector<ParamSpec> params() const override {
+    ParamSpec scene{"scene", "scene name in scenes/ (or a path to a scene .json)", {"planes", "hairball", "smoke"},
+                    {"planes", "hairball"}, {}};
+    ParamSpec view{"view", "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)",
+                   {"fwd", "rev"}, {}, {}};
+    ParamSpec technique{"technique", "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
+                                     "a stencil mask; IS insertion, IMS insertion+merge, RBS-L register block sort",
+                        kTechniques, {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"}, kTechniques};
+    ParamSpec detail{"detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"},
+                     {"full", "small"}};
+    ParamSpec block{"block", "RBS block size MAX_REGISTERS (the paper: 32)", {"32"}, {"8"}, {"4", "8", "16", "32"}};
+    ParamSpec pool{"initial_pool", "first node pool in fragments (0: 4 per pixel); later frames size it from the last "
+                                   "count",
+                   {"0"}, {}, {}, ParamSpec::Kind::Integer, 0, 1e9};
+    ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)", {"0"}, {}, {},
+                        ParamSpec::Kind::Integer, 0, 4096};
+    return {scene, view, technique, detail, block, pool, max_frags};
+  }
+  std::vector<std::string> metric_columns() const override {
+    return {"polygons",         "total_fragments", "peak_depth",     "mean_depth",    "fragments_per_s",
+            "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
+            "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels"};
+  }
+  Resolution default_resolution() const override { return {512, 512}; }
+  Resolution quick_resolution() const override { return {128, 128}; }
+  int max_interleave() const override { return 2; }  // each case holds its node pool
+  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
+    try {
+      return std::make_unique<OitCase>(p, ctx);
+    } catch (const SceneError& e) {
+      throw std::runtime_error(std::string("oit: ") + e.what());
+    }
+  }
+};
+
+}  // namespace
+
+void register_oit(Registry& registry) { registry.add(std::make_unique<OitExperiment>()); }
+
+}  // namespace oitbench

@@ -1,0 +1,101 @@
+#include "oit/fragment_lists.hpp"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+#include "core/registry.hpp"
+
+namespace oitbench::oit {
+
+FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool with_counts)
+    : width_(width), height_(height), with_counts_(with_counts), heads_(gl::make_texture(GL_TEXTURE_2D)),
+      counter_(gl::make_buffer()) {
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels_);
+  glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
+  if (with_counts) {
+    counts_ = gl::make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(counts_.get(), 1, GL_R32UI, width, height);
+  }
+  glNamedBufferStorage(counter_.get(), sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  allocate(std::max<size_t>(initial_pool, 1));
+}
+
+void FragmentLists::allocate(size_t pool) {
+  if (pool > static_cast<size_t>(max_texels_))
+    throw Unsupported("linked-list node pool of " + std::to_string(pool) + " fragments exceeds GL_MAX_TEXTURE_BUFFER_SIZE (" +
+                      std::to_string(max_texels_) + " texels)");
+  pool_ = pool;
+  nodes_ = gl::make_buffer();
+  next_ = gl::make_buffer();
+  glNamedBufferStorage(nodes_.get(), static_cast<GLsizeiptr>(pool * 8), nullptr, 0);
+  glNamedBufferStorage(next_.get(), static_cast<GLsizeiptr>(pool * 4), nullptr, 0);
+  nodes_view_ = gl::make_texture(GL_TEXTURE_BUFFER);
+  next_view_ = gl::make_texture(GL_TEXTURE_BUFFER);
+  glTextureBuffer(nodes_view_.get(), GL_RG32UI, nodes_.get());
+  glTextureBuffer(next_view_.get(), GL_R32UI, next_.get());
+}
+
+void FragmentLists::bind() const {
+  glBindImageTexture(kHeadsUnit, heads_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  glBindImageTexture(kNodesUnit, nodes_view_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
+  glBindImageTexture(kNextUnit, next_view_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  if (with_counts_) glBindImageTexture(kCountsUnit, counts_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, kCounterBinding, counter_.get());
+}
+
+int FragmentLists::capture(GLuint program, const std::function<void()>& draw) {
+  int rerenders = 0;
+  const unsigned end = kListEnd, zero = 0;
+  // Shrinking happens before a frame, never after one: the lists just captured live in the pool.
+  if (shrink_to_) allocate(std::exchange(shrink_to_, 0));
+  for (;;) {
+    glClearTexImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+    if (with_counts_) glClearTexImage(counts_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glNamedBufferSubData(counter_.get(), 0, sizeof(unsigned), &zero);
+    bind();
+    glUseProgram(program);
+    glUniform1ui(glGetUniformLocation(program, "poolSize"), static_cast<GLuint>(pool_));
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+    draw();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    unsigned count = 0;
+    glGetNamedBufferSubData(counter_.get(), 0, sizeof(unsigned), &count);  // waits for the capture
+    fragments_ = count;
+    if (count <= pool_) {
+      // Steady state: keep the pool within 1.25x of what the frame needed (sized from this count).
+      if (pool_ > count + count / 4 && count > 0) shrink_to_ = count + count / 8;
+      break;
+    }
+    // Overflowed: nodes past the pool were not written (nor linked); render the frame again.
+    ++rerenders;
+    allocate(count + count / 8 + 1);
+  }
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  return rerenders;
+}
+
+HostLists FragmentLists::read_back() const {
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  HostLists h;
+  h.width = width_;
+  h.height = height_;
+  size_t pixels = static_cast<size_t>(width_) * height_;
+  h.heads.resize(pixels);
+  glGetTextureImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(pixels * 4), h.heads.data());
+  if (with_counts_) {
+    h.counts.resize(pixels);
+    glGetTextureImage(counts_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(pixels * 4),
+                      h.counts.data());
+  }
+  size_t n = std::min(fragments_, pool_);
+  h.nodes.resize(n);
+  h.next.resize(n);
+  if (n) {
+    glGetNamedBufferSubData(nodes_.get(), 0, static_cast<GLsizeiptr>(n * 8), h.nodes.data());
+    glGetNamedBufferSubData(next_.get(), 0, static_cast<GLsizeiptr>(n * 4), h.next.data());
+  }
+  return h;
+}
+
+}  // namespace oitbench::oit

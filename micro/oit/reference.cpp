@@ -1,0 +1,150 @@
+#include "oit/reference.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+namespace oitbench::oit {
+
+namespace {
+
+struct Frag {
+  float depth;
+  unsigned colour;
+};
+
+glm::dvec4 unpack(unsigned c) {
+  return {(c & 0xffu) / 255.0, ((c >> 8) & 0xffu) / 255.0, ((c >> 16) & 0xffu) / 255.0, (c >> 24) / 255.0};
+}
+
+// Collects one pixel's fragments in list order; false if the list is broken.
+bool gather(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
+  out.clear();
+  for (unsigned n = l.heads[pixel]; n != kListEnd; n = l.next[n]) {
+    if (n >= l.nodes.size() || out.size() > l.nodes.size()) return false;
+    out.push_back({std::bit_cast<float>(l.nodes[n].y), l.nodes[n].x});
+  }
+  return true;
+}
+
+}  // namespace
+
+ListStats list_stats(const HostLists& l) {
+  ListStats s;
+  size_t pixels = l.heads.size();
+  s.depth.resize(pixels);
+  s.tied.assign(pixels, false);
+  std::vector<Frag> f;
+  for (size_t p = 0; p < pixels; ++p) {
+    if (!gather(l, p, f)) {
+      if (s.error.empty())
+        s.error = "the list of pixel (" + std::to_string(p % l.width) + "," + std::to_string(p / l.width) +
+                  ") is broken (a cycle or a node outside the pool)";
+      continue;
+    }
+    s.depth[p] = static_cast<unsigned>(f.size());
+    std::sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) { return a.depth < b.depth; });
+    for (size_t i = 1; i < f.size(); ++i)
+      if (f[i].depth == f[i - 1].depth && f[i].colour != f[i - 1].colour) {
+        s.tied[p] = true;
+        ++s.tied_pixels;
+        break;
+      }
+    s.total_fragments += f.size();
+    s.peak_depth = std::max(s.peak_depth, s.depth[p]);
+    if (!f.empty()) ++s.covered_pixels;
+  }
+  s.mean_depth = s.covered_pixels ? static_cast<double>(s.total_fragments) / s.covered_pixels : 0.0;
+  return s;
+}
+
+std::vector<double> composite_reference(const HostLists& l, glm::vec3 background) {
+  size_t pixels = l.heads.size();
+  std::vector<double> out(pixels * 3);
+  std::vector<Frag> f;
+  for (size_t p = 0; p < pixels; ++p) {
+    gather(l, p, f);
+    // Near to far; equal depths ordered by colour bits so the reference never depends on list order.
+    std::stable_sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) {
+      return a.depth != b.depth ? a.depth < b.depth : a.colour < b.colour;
+    });
+    glm::dvec3 c(0.0);
+    double transmittance = 1.0;
+    for (const auto& fr : f) {
+      glm::dvec4 k = unpack(fr.colour);
+      c += transmittance * k.a * glm::dvec3(k);
+      transmittance *= 1.0 - k.a;
+    }
+    c += transmittance * glm::dvec3(background);
+    for (int k = 0; k < 3; ++k) out[p * 3 + k] = c[k];
+  }
+  return out;
+}
+
+void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool perturb, std::vector<float>& out) {
+  size_t pixels = l.heads.size();
+  out.assign(pixels * 4, 0.0f);
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  auto work = [&](int t) {
+    std::vector<Frag> f;
+    for (size_t row = t; row < static_cast<size_t>(l.height); row += threads)
+      for (size_t p = row * l.width; p < (row + 1) * l.width; ++p) {
+        if (l.heads[p] == kListEnd) continue;
+        gather(l, p, f);
+        std::sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) { return a.depth > b.depth; });
+        glm::vec3 c = background;
+        for (const auto& fr : f) {
+          glm::vec4 k = unpack(fr.colour);
+          c = glm::mix(c, glm::vec3(k), k.a);
+        }
+        if (perturb && p % l.width == row) c.r += 1.0f / 64.0f;  // the diagonal, like the shaders
+        out[p * 4 + 0] = c.r;
+        out[p * 4 + 1] = c.g;
+        out[p * 4 + 2] = c.b;
+        out[p * 4 + 3] = 1.0f;
+      }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& th : pool) th.join();
+}
+
+ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats,
+                                  glm::vec3 background, int width, double tolerance) {
+  ImageError e;
+  double sum_sq = 0;
+  size_t pixels = ref.size() / 3;
+  for (size_t p = 0; p < pixels; ++p) {
+    const float* g = &rgba[p * 4];
+    bool covered = stats.depth[p] > 0;
+    if (g[3] != (covered ? 1.0f : 0.0f)) ++e.visit_errors;
+    if (stats.tied[p]) {
+      // Equal depths leave the order open: the sorts may keep either, the reference picks one.
+      ++e.tied_skipped;
+      continue;
+    }
+    glm::dvec3 got = g[3] == 0.0f ? glm::dvec3(background) : glm::dvec3(g[0], g[1], g[2]);
+    double worst = 0;
+    for (int k = 0; k < 3; ++k) {
+      double d = std::abs(got[k] - ref[p * 3 + k]);
+      worst = std::max(worst, d);
+      sum_sq += d * d;
+    }
+    e.max_abs_error = std::max(e.max_abs_error, worst);
+    if (worst > tolerance) {
+      if (e.bad_pixels++ == 0) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "pixel (%zu,%zu): got (%.4f,%.4f,%.4f) resolved %gx, reference (%.4f,%.4f,%.4f)",
+                      p % width, p / width, got[0], got[1], got[2], g[3], ref[p * 3], ref[p * 3 + 1], ref[p * 3 + 2]);
+        e.first_bad = buf;
+      }
+    }
+  }
+  e.rmse = pixels ? std::sqrt(sum_sq / (pixels * 3.0)) : 0.0;
+  return e;
+}
+
+}  // namespace oitbench::oit

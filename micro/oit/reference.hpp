@@ -1,0 +1,46 @@
+#pragma once
+// The CPU side of exact OIT: statistics of captured lists, the reference compositor (double
+// precision, the read-back fragments sorted near-to-far with a deterministic tie-break and
+// composited front to back with "over"), the CPU-NATIVE resolve (native threads), and the image
+// comparison every resolve is validated with.
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "oit/fragment_lists.hpp"
+
+namespace oitbench::oit {
+
+struct ListStats {
+  size_t total_fragments = 0, covered_pixels = 0;
+  unsigned peak_depth = 0;
+  double mean_depth = 0;             // over covered pixels
+  std::vector<unsigned> depth;       // per pixel
+  std::vector<bool> tied;            // per pixel: fragments of different colours at exactly the same depth
+  size_t tied_pixels = 0;
+  std::string error;                 // a broken list (cycle, index outside the pool), else empty
+};
+ListStats list_stats(const HostLists& lists);
+
+// One RGB per pixel (3 doubles), background where no fragment landed.
+std::vector<double> composite_reference(const HostLists& lists, glm::vec3 background);
+
+// The GPU resolves' output convention: rgb composited onto the background, alpha = how many times
+// the pixel was resolved (additive blending), so uncovered pixels stay (0,0,0,0).
+// CPU-NATIVE: the same resolve on `threads` native threads (0: all cores); sorts far-to-near and
+// blends back to front in float, like the shaders. `perturb` changes the diagonal x == y (fault=wrong-result).
+void resolve_native(const HostLists& lists, glm::vec3 background, int threads, bool perturb, std::vector<float>& out);
+
+struct ImageError {
+  double max_abs_error = 0, rmse = 0;
+  size_t bad_pixels = 0;         // above the tolerance
+  size_t visit_errors = 0;       // covered pixels not resolved exactly once, or uncovered ones resolved
+  size_t tied_skipped = 0;       // pixels with equal-depth fragments of different colours: any order is exact
+  std::string first_bad;         // "pixel (x,y): got (r,g,b), reference (r,g,b)"
+};
+// Compares a resolve's RGBA output (see above) with the reference; `tolerance` per channel.
+ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& reference,
+                                  const ListStats& stats, glm::vec3 background, int width, double tolerance);
+
+}  // namespace oitbench::oit

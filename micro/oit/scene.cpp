@@ -1,0 +1,513 @@
+#include "oit/scene.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <sstream>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+namespace oitbench::oit {
+
+namespace {
+
+using nlohmann::json;
+
+std::string line_col_at(const std::string& text, size_t byte) {
+  size_t line = 1, col = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(col);
+}
+
+// nlohmann keeps no positions for values: find the line of a JSON path by searching for its keys
+// in order ("/materials/glass/alpha" -> "materials", then "glass", then "alpha" after it).
+size_t locate(const std::string& text, const std::vector<std::string>& keys) {
+  size_t pos = 0;
+  for (const auto& k : keys) {
+    if (k.empty() || std::all_of(k.begin(), k.end(), ::isdigit)) continue;  // array index: no key text
+    auto at = text.find("\"" + k + "\"", pos);
+    if (at == std::string::npos) break;
+    pos = at;
+  }
+  return pos;
+}
+
+// Checked access to one JSON object, with the file, the path and the text for error messages.
+class Node {
+ public:
+  Node(const json& j, const std::string& path, const std::string& text, std::vector<std::string> keys)
+      : j_(j), path_(path), text_(text), keys_(std::move(keys)) {}
+
+  [[noreturn]] void fail(const std::string& what) const {
+    std::string ptr;
+    for (const auto& k : keys_) ptr += "/" + k;
+    throw SceneError(path_ + ":" + line_col_at(text_, locate(text_, keys_)) + ": " + (ptr.empty() ? "/" : ptr) +
+                     ": " + what);
+  }
+  Node child(const std::string& key) const {
+    auto k = keys_;
+    k.push_back(key);
+    return Node(j_.at(key), path_, text_, k);
+  }
+  Node element(size_t i) const {
+    auto k = keys_;
+    k.push_back(std::to_string(i));
+    return Node(j_.at(i), path_, text_, k);
+  }
+  const json& raw() const { return j_; }
+  bool has(const std::string& key) const { return j_.is_object() && j_.contains(key); }
+
+  // An empty `allowed` accepts any key (a map of names).
+  void expect_object(const std::vector<std::string>& allowed) const {
+    if (!j_.is_object()) fail("expected an object, got " + std::string(j_.type_name()));
+    if (allowed.empty()) return;
+    for (const auto& [k, v] : j_.items())
+      if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        child(k).fail("unknown key \"" + k + "\"; expected one of: " + list);
+      }
+  }
+  std::string str() const {
+    if (!j_.is_string()) fail("expected a string, got " + std::string(j_.type_name()));
+    return j_.get<std::string>();
+  }
+  double number(double lo, double hi) const {
+    if (!j_.is_number()) fail("expected a number, got " + std::string(j_.type_name()));
+    double v = j_.get<double>();
+    if (v < lo || v > hi) fail("expected a number in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(v));
+    return v;
+  }
+  bool boolean() const {
+    if (!j_.is_boolean()) fail("expected true or false, got " + std::string(j_.type_name()));
+    return j_.get<bool>();
+  }
+  glm::vec3 vec3(double lo = -1e6, double hi = 1e6) const {
+    if (!j_.is_array() || j_.size() != 3) fail("expected an array of 3 numbers");
+    return {element(0).number(lo, hi), element(1).number(lo, hi), element(2).number(lo, hi)};
+  }
+
+ private:
+  static std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+  const json& j_;
+  const std::string& path_;
+  const std::string& text_;
+  std::vector<std::string> keys_;
+};
+
+const std::vector<std::string> kGenerators = {"planes", "hairball", "smoke", "model"};
+
+SubmitOrder parse_order(const Node& n) {
+  auto s = n.str();
+  if (s == "as-generated") return SubmitOrder::AsGenerated;
+  if (s == "front-to-back") return SubmitOrder::FrontToBack;
+  if (s == "back-to-front") return SubmitOrder::BackToFront;
+  n.fail("expected \"as-generated\", \"front-to-back\" or \"back-to-front\", got \"" + s + "\"");
+}
+
+// ---- generators: each appends primitives (groups of triangles) with one centroid per group ----
+
+struct Builder {
+  Mesh mesh;
+  std::vector<glm::vec3> centroids;        // per group
+  std::vector<std::pair<size_t, size_t>> groups;  // [first index, index count)
+  void begin() { groups.push_back({mesh.indices.size(), 0}); }
+  void end(glm::vec3 centroid) {
+    groups.back().second = mesh.indices.size() - groups.back().first;
+    centroids.push_back(centroid);
+  }
+  unsigned vertex(glm::vec3 p, glm::vec4 c, glm::vec2 uv = {0, 0}, float soft = 0) {
+    mesh.vertices.push_back({p, glm::u8vec4(glm::clamp(c, 0.0f, 1.0f) * 255.0f + 0.5f), uv, soft});
+    return static_cast<unsigned>(mesh.vertices.size() - 1);
+  }
+  void quad(unsigned a, unsigned b, unsigned c, unsigned d) {
+    mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
+  }
+};
+
+// Deterministic generator (the scene must not depend on the standard library's distributions).
+struct Rng {
+  unsigned long long s;
+  explicit Rng(unsigned long long seed) : s(seed * 6364136223846793005ULL + 1442695040888963407ULL) {}
+  double uniform() {  // [0, 1)
+    s ^= s >> 12;
+    s ^= s << 25;
+    s ^= s >> 27;
+    return static_cast<double>((s * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
+  }
+  double range(double a, double b) { return a + (b - a) * uniform(); }
+  glm::vec3 unit() {
+    for (;;) {
+      glm::vec3 v(range(-1, 1), range(-1, 1), range(-1, 1));
+      float l = glm::length(v);
+      if (l > 0.05f && l <= 1.0f) return v / l;
+    }
+  }
+  double normal() {
+    double u = std::max(uniform(), 1e-12), v = uniform();
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(6.283185307179586 * v);
+  }
+};
+
+glm::vec3 hue(double h) {
+  h = h - std::floor(h);
+  glm::vec3 c(std::abs(h * 6 - 3) - 1, 2 - std::abs(h * 6 - 2), 2 - std::abs(h * 6 - 4));
+  return glm::clamp(c, 0.0f, 1.0f);
+}
+
+double param(const json& p, const char* key, double fallback) { return p.contains(key) ? p[key].get<double>() : fallback; }
+
+// The paper's synthetic scene: `count` planes facing +z, evenly spaced from z = +depth/2 (plane 0)
+// to -depth/2, each a different hue, generated nearest-to-+z first.
+void gen_planes(Builder& b, const json& p, const Material& m) {
+  int count = static_cast<int>(param(p, "count", 128));
+  double half = param(p, "half_size", 2.0), depth = param(p, "depth", 2.0);
+  for (int i = 0; i < count; ++i) {
+    double z = count == 1 ? 0.0 : depth / 2 - depth * i / (count - 1);
+    glm::vec4 c(glm::mix(m.colour, hue(static_cast<double>(i) / count), 0.5f), m.alpha);
+    b.begin();
+    float h = static_cast<float>(half), zf = static_cast<float>(z);
+    unsigned v0 = b.vertex({-h, -h, zf}, c), v1 = b.vertex({h, -h, zf}, c), v2 = b.vertex({h, h, zf}, c),
+             v3 = b.vertex({-h, h, zf}, c);
+    b.quad(v0, v1, v2, v3);
+    b.end({0, 0, zf});
+  }
+}
+
+// A tangle of thin tubes inside a sphere: `strands` random walks of `segments` steps, each step a
+// `sides`-sided open tube. Generated strand by strand, step by step (a modelling package's order).
+void gen_hairball(Builder& b, const json& p, const Material& m) {
+  int strands = static_cast<int>(param(p, "strands", 500)), segments = static_cast<int>(param(p, "segments", 100));
+  int sides = static_cast<int>(param(p, "sides", 3));
+  double step = param(p, "segment_length", 0.1), r = param(p, "tube_radius", 0.02), radius = param(p, "radius", 1.0);
+  double wiggle = param(p, "wiggle", 0.5);
+  Rng rng(static_cast<unsigned long long>(param(p, "seed", 1)));
+  for (int s = 0; s < strands; ++s) {
+    glm::vec3 pos = rng.unit() * static_cast<float>(radius * std::cbrt(rng.uniform()));
+    glm::vec3 dir = rng.unit();
+    glm::vec4 c(glm::mix(m.colour, hue(rng.uniform()), 0.3f), m.alpha);
+    for (int k = 0; k < segments; ++k) {
+      dir = glm::normalize(dir + rng.unit() * static_cast<float>(wiggle));
+      glm::vec3 next = pos + dir * static_cast<float>(step);
+      if (glm::length(next) > radius) {  // turn back into the sphere
+        dir = glm::normalize(glm::reflect(dir, glm::normalize(next)));
+        next = pos + dir * static_cast<float>(step);
+      }
+      glm::vec3 axis = glm::normalize(next - pos);
+      glm::vec3 ref = std::abs(axis.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+      glm::vec3 u = glm::normalize(glm::cross(axis, ref)), v = glm::cross(axis, u);
+      b.begin();
+      unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
+      for (int i = 0; i < sides; ++i) {
+        double a = 6.283185307179586 * i / sides;
+        glm::vec3 off = (u * static_cast<float>(std::cos(a)) + v * static_cast<float>(std::sin(a))) * static_cast<float>(r);
+        b.vertex(pos + off, c);
+        b.vertex(next + off, c);
+      }
+      for (int i = 0; i < sides; ++i) {
+        unsigned a0 = first + 2 * i, a1 = a0 + 1, b0 = first + 2 * ((i + 1) % sides), b1 = b0 + 1;
+        b.quad(a0, b0, b1, a1);
+      }
+      b.end((pos + next) * 0.5f);
+      pos = next;
+    }
+  }
+}
+
+// Camera-facing billboards in a rising plume: `count` squares of side `size`, Gaussian about the
+// column (`spread` sideways, `height` up), alpha falling off radially (soft material).
+void gen_smoke(Builder& b, const json& p, const Material& m, const View& view) {
+  int count = static_cast<int>(param(p, "count", 510));
+  double size = param(p, "size", 0.5), spread = param(p, "spread", 0.25), height = param(p, "height", 1.6);
+  Rng rng(static_cast<unsigned long long>(param(p, "seed", 2)));
+  for (int i = 0; i < count; ++i) {
+    double t = rng.uniform();
+    glm::vec3 centre(rng.normal() * spread * (0.5 + t), (t - 0.5) * height, rng.normal() * spread * (0.5 + t));
+    glm::vec3 to_eye = glm::normalize(view.eye - centre);
+    glm::vec3 right = glm::normalize(glm::cross(view.up, to_eye)), up = glm::cross(to_eye, right);
+    float h = static_cast<float>(size * (0.6 + 0.8 * rng.uniform()) / 2);
+    glm::vec4 c(m.colour * static_cast<float>(0.8 + 0.2 * rng.uniform()), m.alpha);
+    float soft = m.soft ? 1.0f : 0.0f;
+    b.begin();
+    unsigned v0 = b.vertex(centre - right * h - up * h, c, {-1, -1}, soft);
+    unsigned v1 = b.vertex(centre + right * h - up * h, c, {1, -1}, soft);
+    unsigned v2 = b.vertex(centre + right * h + up * h, c, {1, 1}, soft);
+    unsigned v3 = b.vertex(centre - right * h + up * h, c, {-1, 1}, soft);
+    b.quad(v0, v1, v2, v3);
+    b.end(centre);
+  }
+}
+
+// A model file read with assimp (triangulated, node transforms applied), scaled into the unit
+// sphere, repeated on a `grid` x `grid` x `grid` lattice `spacing` apart (an engine grid gives a deep
+// scene from a small model). Each triangle is a primitive; colours mix the scene material with the
+// model's diffuse colours.
+void gen_model(Builder& b, const json& p, const Material& m, const std::string& file) {
+  Assimp::Importer importer;
+  const aiScene* sc = importer.ReadFile(file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                  aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (!sc || !sc->mRootNode) throw SceneError(file + ": assimp could not read the model: " + importer.GetErrorString());
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (unsigned i = 0; i < sc->mNumMeshes; ++i)
+    for (unsigned v = 0; v < sc->mMeshes[i]->mNumVertices; ++v) {
+      const aiVector3D& q = sc->mMeshes[i]->mVertices[v];
+      lo = glm::min(lo, glm::vec3(q.x, q.y, q.z));
+      hi = glm::max(hi, glm::vec3(q.x, q.y, q.z));
+    }
+  if (lo.x > hi.x) throw SceneError(file + ": the model has no vertices");
+  glm::vec3 centre = (lo + hi) * 0.5f;
+  float scale = 2.0f / std::max(glm::length(hi - lo), 1e-6f);
+  int grid = std::max(1, static_cast<int>(param(p, "grid", 1)));
+  float spacing = static_cast<float>(param(p, "spacing", 1.0));
+  float half = 0.5f * spacing * static_cast<float>(grid - 1);
+  for (int gz = 0; gz < grid; ++gz)
+    for (int gy = 0; gy < grid; ++gy)
+      for (int gx = 0; gx < grid; ++gx) {
+        glm::vec3 offset(gx * spacing - half, gy * spacing - half, gz * spacing - half);
+        for (unsigned i = 0; i < sc->mNumMeshes; ++i) {
+          const aiMesh* mesh = sc->mMeshes[i];
+          if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+          glm::vec3 diffuse(1.0f);
+          aiColor4D d;
+          if (sc->mMaterials && aiGetMaterialColor(sc->mMaterials[mesh->mMaterialIndex], AI_MATKEY_COLOR_DIFFUSE, &d) == AI_SUCCESS)
+            diffuse = glm::vec3(d.r, d.g, d.b);
+          glm::vec4 c(glm::mix(m.colour, diffuse, 0.5f), m.alpha);
+          unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
+          for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+            const aiVector3D& q = mesh->mVertices[v];
+            b.vertex((glm::vec3(q.x, q.y, q.z) - centre) * scale + offset, c);
+          }
+          for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            const aiFace& face = mesh->mFaces[f];
+            if (face.mNumIndices != 3) continue;
+            b.begin();
+            unsigned a = first + face.mIndices[0], bb = first + face.mIndices[1], cc = first + face.mIndices[2];
+            b.mesh.indices.insert(b.mesh.indices.end(), {a, bb, cc});
+            b.end((b.mesh.vertices[a].position + b.mesh.vertices[bb].position + b.mesh.vertices[cc].position) / 3.0f);
+          }
+        }
+      }
+}
+
+std::string resolve_model(const SceneDesc& s, const std::string& file) {
+  std::vector<std::filesystem::path> roots = {std::filesystem::path(s.path).parent_path()};
+  if (const char* env = std::getenv("OITBENCH_MODELS")) roots.insert(roots.begin(), env);
+  for (const auto& r : s.model_roots) roots.push_back(r);
+  std::string tried;
+  for (const auto& r : roots) {
+    auto p = r / file;
+    if (std::filesystem::exists(p)) return p.string();
+    tried += (tried.empty() ? "" : ", ") + r.string();
+  }
+  throw SceneError(s.path + ": model file \"" + file + "\" not found in " + tried +
+                   " (set OITBENCH_MODELS, or install Debian's assimp-testmodels)");
+}
+
+}  // namespace
+
+const View& SceneDesc::view(const std::string& n) const {
+  for (const auto& v : views)
+    if (v.name == n) return v;
+  std::string list;
+  for (const auto& v : views) list += (list.empty() ? "" : ", ") + v.name;
+  throw SceneError(path + ": scene \"" + name + "\" has no view \"" + n + "\"; views: " + list);
+}
+
+const Material& SceneDesc::material(const std::string& n) const {
+  for (const auto& m : materials)
+    if (m.name == n) return m;
+  throw SceneError(path + ": scene \"" + name + "\" has no material \"" + n + "\"");
+}
+
+SceneDesc parse_scene(const std::string& path, const std::string& text) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // e.byte is the 1-based offset of the character that broke the parse.
+    std::string what = e.what();
+    if (auto at = what.find("syntax error"); at != std::string::npos) what = what.substr(at);
+    throw SceneError(path + ":" + line_col_at(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + what);
+  }
+  Node root(j, path, text, {});
+  root.expect_object({"name", "description", "background", "effects", "materials", "objects", "views", "model_roots"});
+  SceneDesc s;
+  s.path = path;
+  s.name = root.has("name") ? root.child("name").str() : std::filesystem::path(path).stem().string();
+  if (root.has("description")) s.description = root.child("description").str();
+  if (root.has("model_roots")) {
+    auto r = root.child("model_roots");
+    if (!r.raw().is_array()) r.fail("expected an array of folders");
+    for (size_t i = 0; i < r.raw().size(); ++i) s.model_roots.push_back(r.element(i).str());
+  }
+  if (root.has("background")) s.background = root.child("background").vec3(0, 1);
+  if (root.has("effects")) {
+    auto e = root.child("effects");
+    if (!e.raw().is_array()) e.fail("expected an array of effect names, e.g. [\"transparency\"]");
+    for (size_t i = 0; i < e.raw().size(); ++i) {
+      auto name = e.element(i).str();
+      if (name != "transparency") e.element(i).fail("unknown effect \"" + name + "\"; expected \"transparency\"");
+      s.effects.push_back(name);
+    }
+  }
+  if (!root.has("materials")) root.fail("expected \"materials\": {\"NAME\": {\"colour\": [r, g, b], \"alpha\": a}}");
+  auto mats = root.child("materials");
+  mats.expect_object({});
+  for (const auto& [k, v] : j["materials"].items()) {
+    (void)v;
+    auto n = mats.child(k);
+    n.expect_object({"colour", "alpha", "opaque", "soft"});
+    Material m;
+    m.name = k;
+    if (n.has("colour")) m.colour = n.child("colour").vec3(0, 1);
+    if (n.has("alpha")) m.alpha = static_cast<float>(n.child("alpha").number(0, 1));
+    if (n.has("opaque")) m.opaque = n.child("opaque").boolean();
+    if (n.has("soft")) m.soft = n.child("soft").boolean();
+    if (m.opaque) m.alpha = 1.0f;
+    s.materials.push_back(m);
+  }
+  if (!root.has("objects")) root.fail("expected \"objects\": [{\"generator\": ..., \"material\": ...}]");
+  auto objs = root.child("objects");
+  if (!objs.raw().is_array() || objs.raw().empty()) objs.fail("expected a non-empty array of objects");
+  for (size_t i = 0; i < objs.raw().size(); ++i) {
+    auto o = objs.element(i);
+    o.expect_object({"generator", "material", "params", "small", "file"});
+    SceneObject obj;
+    if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, smoke, model");
+    obj.generator = o.child("generator").str();
+    if (std::find(kGenerators.begin(), kGenerators.end(), obj.generator) == kGenerators.end())
+      o.child("generator").fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, smoke or model");
+    if (obj.generator == "model") {
+      if (!o.has("file")) o.fail("expected \"file\": the model file (searched in model_roots)");
+      obj.file = o.child("file").str();
+    }
+    if (!o.has("material")) o.fail("expected \"material\": the name of one of the scene's materials");
+    obj.material = o.child("material").str();
+    bool known = std::any_of(s.materials.begin(), s.materials.end(), [&](const Material& m) { return m.name == obj.material; });
+    if (!known) o.child("material").fail("no material named \"" + obj.material + "\" in \"materials\"");
+    for (const char* key : {"params", "small"}) {
+      if (!o.has(key)) continue;
+      auto pn = o.child(key);
+      pn.expect_object({"count", "half_size", "depth", "strands", "segments", "sides", "segment_length",
+                        "tube_radius", "radius", "wiggle", "seed", "size", "spread", "height", "grid", "spacing"});
+      for (const auto& [pk, pv] : pn.raw().items()) {
+        (void)pv;
+        pn.child(pk).number(0, 1e7);
+      }
+      (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();
+    }
+    if (obj.params.is_null()) obj.params = json::object();
+    s.objects.push_back(std::move(obj));
+  }
+  if (!root.has("views")) root.fail("expected \"views\": {\"NAME\": {\"eye\": [x, y, z], ...}}");
+  auto views = root.child("views");
+  views.expect_object({});
+  for (const auto& [k, v] : j["views"].items()) {
+    (void)v;
+    auto n = views.child(k);
+    n.expect_object({"eye", "target", "up", "fov", "order"});
+    View view;
+    view.name = k;
+    if (!n.has("eye")) n.fail("expected \"eye\": [x, y, z]");
+    view.eye = n.child("eye").vec3();
+    if (n.has("target")) view.target = n.child("target").vec3();
+    if (n.has("up")) view.up = n.child("up").vec3();
+    if (n.has("fov")) view.fov_deg = static_cast<float>(n.child("fov").number(1, 170));
+    if (n.has("order")) view.order = parse_order(n.child("order"));
+    if (glm::length(view.eye - view.target) < 1e-6f) n.fail("eye and target coincide");
+    s.views.push_back(view);
+  }
+  if (s.views.empty()) views.fail("expected at least one view");
+  return s;
+}
+
+std::string default_scene_dir() {
+  if (const char* env = std::getenv("OITBENCH_SCENES")) return env;
+  std::error_code ec;
+  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec)
+    for (auto dir = exe.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
+      if (std::filesystem::is_directory(dir / "scenes")) return (dir / "scenes").string();
+  return std::string(OITBENCH_SOURCE_DIR) + "/scenes";
+}
+
+SceneDesc load_scene(const std::string& name_or_path) {
+  std::filesystem::path path = name_or_path;
+  bool is_path = name_or_path.find('/') != std::string::npos || name_or_path.ends_with(".json");
+  if (!is_path) path = std::filesystem::path(default_scene_dir()) / (name_or_path + ".json");
+  std::ifstream in(path);
+  if (!in) {
+    std::string names;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(default_scene_dir(), ec))
+      if (e.path().extension() == ".json") names += (names.empty() ? "" : ", ") + e.path().stem().string();
+    throw SceneError("scene '" + name_or_path + "': cannot read " + path.string() + "; scenes in " +
+                     default_scene_dir() + ": " + (names.empty() ? "(none)" : names));
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(path.string(), ss.str());
+}
+
+Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail) {
+  Builder b;
+  for (const auto& o : scene.objects) {
+    json p = o.params;
+    if (detail == Detail::Small && o.small.is_object())
+      for (const auto& [k, v] : o.small.items()) p[k] = v;
+    const Material& m = scene.material(o.material);
+    if (o.generator == "planes") gen_planes(b, p, m);
+    else if (o.generator == "hairball") gen_hairball(b, p, m);
+    else if (o.generator == "model") gen_model(b, p, m, resolve_model(scene, o.file));
+    else gen_smoke(b, p, m, view);
+  }
+  if (view.order == SubmitOrder::AsGenerated) return std::move(b.mesh);
+  // Reorder whole primitives by their centroid's distance to the eye (stable: ties keep generation order).
+  std::vector<size_t> order(b.groups.size());
+  std::vector<float> dist(b.groups.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    order[i] = i;
+    dist[i] = glm::length(b.centroids[i] - view.eye);
+  }
+  bool front_to_back = view.order == SubmitOrder::FrontToBack;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t c) { return front_to_back ? dist[a] < dist[c] : dist[a] > dist[c]; });
+  std::vector<unsigned> indices;
+  indices.reserve(b.mesh.indices.size());
+  for (size_t g : order) {
+    auto [first, count] = b.groups[g];
+    indices.insert(indices.end(), b.mesh.indices.begin() + first, b.mesh.indices.begin() + first + count);
+  }
+  b.mesh.indices = std::move(indices);
+  return std::move(b.mesh);
+}
+
+glm::mat4 view_projection(const View& view, const Mesh& mesh, float aspect) {
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const auto& v : mesh.vertices) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  glm::vec3 centre = (lo + hi) * 0.5f;
+  float radius = glm::length(hi - lo) * 0.5f;
+  float dist = glm::length(centre - view.eye);
+  float near_plane = std::max(0.01f, dist - radius - 0.01f), far_plane = dist + radius + 0.01f;
+  return glm::perspective(glm::radians(view.fov_deg), aspect, near_plane, far_plane) *
+         glm::lookAt(view.eye, view.target, view.up);
+}
+
+}  // namespace oitbench::oit

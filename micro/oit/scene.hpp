@@ -1,0 +1,87 @@
+#pragma once
+// Scenes as data: a JSON file in scenes/ names the materials, the objects (each made by a procedural
+// generator), the effects the scene needs and the camera views. The format is documented in
+// scenes/README.md; build_mesh() turns one view of a scene into triangles in submission order.
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace oitbench::oit {
+
+// A malformed or inconsistent scene file; the message starts with "file:line:column:".
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Material {
+  std::string name;
+  glm::vec3 colour{1.0f};
+  float alpha = 0.5f;
+  bool opaque = false;  // opaque surfaces hide what lies behind them (alpha forced to 1)
+  bool soft = false;    // alpha falls off radially over the primitive's uv (smoke billboards)
+};
+
+// Which order the primitives are submitted in, relative to the view's eye. Per-pixel linked lists
+// prepend, so front-to-back submission stores each pixel's fragments far-to-near: already sorted
+// for the resolves (the best case), and back-to-front the reverse (the worst case).
+enum class SubmitOrder { AsGenerated, FrontToBack, BackToFront };
+
+struct View {
+  std::string name;
+  glm::vec3 eye{0, 0, 3}, target{0, 0, 0}, up{0, 1, 0};
+  float fov_deg = 45.0f;
+  SubmitOrder order = SubmitOrder::AsGenerated;
+};
+
+struct SceneObject {
+  std::string generator;   // planes | hairball | smoke | model
+  std::string file;        // model: the model file, resolved against the scene's model_roots
+  nlohmann::json params;   // the generator's parameters, "small" overrides already applied when asked
+  nlohmann::json small;    // overrides for the small (quick/test) size
+  std::string material;
+};
+
+struct SceneDesc {
+  std::string name, description, path;
+  glm::vec3 background{1.0f};
+  std::vector<std::string> effects;  // e.g. "transparency"
+  std::vector<std::string> model_roots;  // folders searched for model files (after the scene's own folder)
+  std::vector<Material> materials;
+  std::vector<SceneObject> objects;
+  std::vector<View> views;
+
+  const View& view(const std::string& name) const;            // throws SceneError listing the views
+  const Material& material(const std::string& name) const;    // throws SceneError
+};
+
+enum class Detail { Full, Small };
+
+// Parses a scene; every error names `path`, the line and column and what was expected.
+SceneDesc parse_scene(const std::string& path, const std::string& text);
+// A name ("planes") is looked up in the scene directory; anything with '/' or ".json" is a path.
+SceneDesc load_scene(const std::string& name_or_path);
+std::string default_scene_dir();  // $OITBENCH_SCENES, else scenes/ beside the binary or the source tree
+
+struct Vertex {
+  glm::vec3 position;
+  glm::u8vec4 colour;  // RGBA8, straight alpha
+  glm::vec2 uv;        // used by soft materials
+  float soft;          // 1 for soft materials
+};
+
+struct Mesh {
+  std::vector<Vertex> vertices;
+  std::vector<unsigned> indices;  // triangles, in submission order
+  size_t polygons() const { return indices.size() / 3; }
+};
+
+// Generates every object for `view` (billboards face its eye) and orders the primitives as the view asks.
+Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail);
+
+// The camera's view-projection for an aspect ratio; near and far planes enclose the mesh.
+glm::mat4 view_projection(const View& view, const Mesh& mesh, float aspect);
+
+}  // namespace oitbench::oit

@@ -1,0 +1,16 @@
+// Fragment capture: transforms the scene mesh (micro/oit/gpu_mesh.cpp's vertex layout).
+#include "../common/oitbench.glsl"
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec4 colour;
+layout(location = 2) in vec2 uv;
+layout(location = 3) in float soft;
+uniform mat4 viewProj;
+out vec4 vColour;
+out vec2 vUv;
+out float vSoft;
+void main() {
+  vColour = colour;
+  vUv = uv;
+  vSoft = soft;
+  gl_Position = viewProj * vec4(position, 1.0);
+}
