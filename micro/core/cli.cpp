@@ -153,6 +153,7 @@ int run_cli(int argc, char** argv) {
   run->add_option("--shaders", ropt.shader_root, "Shader directory (default: the source tree's shaders/)");
   run->add_option("--presets-dir", preset_dir, "Preset directory (default: the source tree's presets/)");
   run->add_option("--preset-name", ropt.preset_name, "Recorded in the preset column")->group("");
+  run->add_flag("--isolated-child", ropt.isolated_child, "Set by the parent for an isolated case")->group("");
 
   try {
     app.parse(argc, argv);

@@ -198,7 +198,8 @@ class Runner {
     watchdog_cv_.notify_all();
     watchdog_.join();
     if (opt_.progress) std::fputc('\n', stderr);
-    std::fprintf(stderr, "oitbench: %zu case(s): %d ok, %d invalid, %d unsupported, %d error, %d timeout -> %s\n",
+    if (!opt_.isolated_child)
+      std::fprintf(stderr, "oitbench: %zu case(s): %d ok, %d invalid, %d unsupported, %d error, %d timeout -> %s\n",
                  cases_done_, counts_["ok"], counts_["invalid"], counts_["unsupported"], counts_["error"],
                  counts_["timeout"], opt_.out == "-" ? "stdout" : opt_.out.c_str());
     if (signals_.stopped()) {
@@ -417,7 +418,7 @@ class Runner {
     std::string dir = dbuf.data();
     std::string out = dir + "/case.csv", raw = dir + "/raw.csv";
     std::vector<std::string> args = {"/proc/self/exe", "run", exp.name(), "--out", out, "--isolate", "never",
-                                     "--no-progress", "--backend", opt_.context.backend,
+                                     "--no-progress", "--isolated-child", "--backend", opt_.context.backend,
                                      "--device", std::to_string(opt_.context.device),
                                      "--resolution", std::to_string(res.width) + "x" + std::to_string(res.height),
                                      "--reps", std::to_string(reps), "--warmup", std::to_string(warmup),

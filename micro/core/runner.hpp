@@ -35,7 +35,8 @@ struct RunOptions {
   bool progress = true;
   std::string preset_name;       // recorded in each row
   std::string shader_root;       // where shaders/ lives
-  bool program_cache = true;     // reuse linked programs (glGetProgramBinary) across runs
+  bool program_cache = true;
+  bool isolated_child = false;   // this process runs one case for a parent: no summary line     // reuse linked programs (glGetProgramBinary) across runs
 };
 
 // The CSV columns a run writes: fixed base columns, recorded environment, every registered
