@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/packed_fragment.hpp"
 #include "core/registry.hpp"
 #include "core/render_target.hpp"
 
@@ -19,28 +20,7 @@ namespace oitbench {
 
 namespace {
 
-struct Fragment {  // matches the shaders' uvec2: x = float depth bits, y = RGBA8
-  uint32_t key_bits;
-  uint32_t rgba;
-};
-
-float key_of(const Fragment& f) {
-  float k;
-  std::memcpy(&k, &f.key_bits, sizeof k);
-  return k;
-}
-
-uint32_t bits_of(float k) {
-  uint32_t b;
-  std::memcpy(&b, &k, sizeof b);
-  return b;
-}
-
-int ceil_log2(int n) {
-  int l = 0;
-  while ((1 << l) < n) ++l;
-  return l;
-}
+using Fragment = PackedFragment;
 
 // The sort algorithms: parameter value, the define that selects its file in
 // shaders/sort/algorithms.glsl, and which memory forms exist.
