@@ -140,7 +140,10 @@ int run_cli(int argc, char** argv) {
   run->add_option("--raw", ropt.raw, "Also write every repetition (one row per sample) to this CSV");
   run->add_option("--timer", ropt.timer, "Primary clock: auto (CPU on software renderers, GPU queries elsewhere), cpu, gpu")
       ->check(CLI::IsMember({"auto", "cpu", "gpu"}));
-  bool no_interleave = false, no_progress = false;
+  bool no_interleave = false, no_progress = false, no_program_cache = false;
+  run->add_flag("--no-program-cache", no_program_cache,
+                "Compile every program from source (to measure compile time); default: reuse linked programs "
+                "from ~/.cache/oitbench/programs (glGetProgramBinary, keyed on sources, defines and driver)");
   run->add_flag("--no-interleave", no_interleave, "Run each case's repetitions back to back (default: A B C A B C ...)");
   run->add_option("--isolate", ropt.isolate, "Run cases in child processes under the watchdog: auto (hang-prone experiments), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
@@ -169,6 +172,7 @@ int run_cli(int argc, char** argv) {
     ropt.reps_given = run->count("--reps") > 0;
     ropt.warmup_given = run->count("--warmup") > 0;
     ropt.interleave = !no_interleave;
+    ropt.program_cache = !no_program_cache;
     ropt.progress = !no_progress;
     if (!resolution.empty()) ropt.resolution = parse_resolution(resolution);
     std::map<std::string, std::vector<std::string>> overrides;

@@ -94,8 +94,11 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
         if (!v.is_number_integer() || v.get<int>() < (k == "reps" ? 1 : 0))
           throw UsageError(where + "." + k + ": expected a " + (k == "reps" ? "positive" : "non-negative") + " integer");
         (k == "reps" ? req.reps : req.warmup) = v.get<int>();
+      } else if (k == "quick") {
+        if (!v.is_boolean()) throw UsageError(where + ".quick: expected true or false");
+        req.quick = v.get<bool>();
       } else {
-        throw UsageError(where + ": unknown key \"" + k + "\"; expected experiment, set, resolution, reps, warmup");
+        throw UsageError(where + ": unknown key \"" + k + "\"; expected experiment, set, resolution, reps, warmup, quick");
       }
     }
     p.runs.push_back(std::move(req));

@@ -2,7 +2,8 @@
 // Presets: named grids kept as JSON files in presets/ (the grids that rerun a paper's table).
 //   { "description": "...",
 //     "runs": [ { "experiment": "occupancy", "set": { "variant": ["dynamic"], "size": [1, 2, 4] },
-//                 "resolution": "800x600", "reps": 5, "warmup": 1 } ] }
+//                 "resolution": "800x600", "reps": 5, "warmup": 1 },
+//               { "experiment": "sort", "quick": true } ] }   (quick: the experiment's --quick grid)
 #include <string>
 #include <vector>
 

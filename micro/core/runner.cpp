@@ -100,7 +100,7 @@ const std::vector<std::string>& base_columns() {
       "schema", "experiment", "variant", "pass", "status", "valid", "reason", "backend", "device", "gl_vendor",
       "gl_renderer", "gl_version", "width", "height", "reps", "warmup", "median_ms", "mad_ms", "min_ms", "max_ms",
       "mean_ms", "stddev_ms", "samples", "outliers", "cpu_median_ms", "cpu_mad_ms", "gpu_median_ms", "gpu_mad_ms",
-      "timer", "compile_ms", "warmup_ms", "preset", "git_sha", "timestamp_utc", "hostname", "cpu_model",
+      "timer", "compile_ms", "program_cache", "warmup_ms", "preset", "git_sha", "timestamp_utc", "hostname", "cpu_model",
       "lp_num_threads", "env"};
   return cols;
 }
@@ -117,6 +117,7 @@ struct LiveCase {
   std::string status = "ok";
   std::string reason;
   double compile_ms = NAN, warmup_ms = NAN;
+  std::string program_cache;  // hit | miss | partial | off: whether compile_ms paid the compile
   std::vector<std::string> pass_names;
   std::map<std::string, std::vector<double>> cpu, gpu;  // by pass, "total" included
   Validation validation;
@@ -141,6 +142,8 @@ class Runner {
     ctx_ = create_context(opt_.context);
     gl_ = GlInfo::query();
     shaders_ = std::make_unique<ShaderLibrary>(opt_.shader_root);
+    if (opt_.program_cache && gl_.has_extension("GL_ARB_get_program_binary"))
+      shaders_->enable_program_cache(default_program_cache_dir(), gl_.vendor + "|" + gl_.renderer + "|" + gl_.version);
     use_gpu_timer_ = opt_.timer == "gpu" || (opt_.timer == "auto" && !gl_.is_software_renderer() && gl_.has_timer_query());
     writer_ = std::make_unique<CsvWriter>(opt_.out, csv_columns(registry_));
     if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_));
@@ -159,13 +162,14 @@ class Runner {
     std::vector<Planned> plan;
     for (const auto& r : requests) {
       Experiment* e = registry_.find(r.experiment);
+      const bool quick = opt_.quick || r.quick;
       Resolution res = opt_.resolution ? *opt_.resolution
                        : r.resolution  ? *r.resolution
-                       : opt_.quick    ? e->quick_resolution()
+                       : quick         ? e->quick_resolution()
                                        : e->default_resolution();
-      int reps = opt_.reps_given ? opt_.reps : r.reps.value_or(opt_.quick ? std::min(opt_.reps, 3) : opt_.reps);
+      int reps = opt_.reps_given ? opt_.reps : r.reps.value_or(quick ? std::min(opt_.reps, 3) : opt_.reps);
       int warmup = opt_.warmup_given ? opt_.warmup : r.warmup.value_or(opt_.warmup);
-      plan.push_back({e, res, reps, warmup, expand_grid(registry_.params_of(*e), r.overrides, opt_.quick)});
+      plan.push_back({e, res, reps, warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
       total_cases_ += plan.back().cases.size();
     }
     start_ = Clock::now();
@@ -231,9 +235,17 @@ class Runner {
         CaseContext cctx(*shaders_, gl_, res, c.params.get("fault"), static_cast<unsigned>(c.params.get_int("seed")));
         glFinish();
         auto t0 = Clock::now();
+        auto before = shaders_->cache_counts();
         c.instance = exp.prepare(c.params, cctx);
         glFinish();
         c.compile_ms = ms_since(t0);
+        auto after = shaders_->cache_counts();
+        unsigned hits = after.hits - before.hits, misses = after.misses - before.misses;
+        c.program_cache = !opt_.program_cache ? "off"
+                          : hits + misses == 0 ? ""
+                          : misses == 0        ? "hit"
+                          : hits == 0          ? "miss"
+                                               : "partial";
         if (auto err = gl_error_text(); !err.empty()) fail(c, "error", "GL error after prepare: " + err);
       } catch (const Unsupported& e) {
         fail(c, "unsupported", e.what());
@@ -321,6 +333,7 @@ class Runner {
     base["valid"] = c.status == "ok" ? "1" : "0";
     base["compile_ms"] = fmt(c.compile_ms);
     base["warmup_ms"] = fmt(c.warmup_ms);
+    base["program_cache"] = c.program_cache;
     if (c.instance)
       for (const auto& [k, v] : c.instance->metrics()) base[k] = v;
     for (const auto& [k, v] : c.validation.metrics) base[k] = v;
@@ -412,6 +425,7 @@ class Runner {
     if (!opt_.preset_name.empty()) args.insert(args.end(), {"--preset-name", opt_.preset_name});
     if (raw_writer_) args.insert(args.end(), {"--raw", raw});
     if (!opt_.interleave) args.push_back("--no-interleave");
+    if (!opt_.program_cache) args.push_back("--no-program-cache");
     for (const auto& [k, v] : params.values()) args.insert(args.end(), {"--set", k + "=" + v});
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -435,6 +449,7 @@ class Runner {
         waitpid(pid, &status, 0);
         break;
       }
+      heartbeat();  // the child has its own deadline; the in-process watchdog must not race it
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     heartbeat();

@@ -17,6 +17,7 @@ struct RunRequest {
   std::map<std::string, std::vector<std::string>> overrides;  // --set NAME=V1,V2
   std::optional<Resolution> resolution;
   std::optional<int> reps, warmup;
+  bool quick = false;  // this request uses the experiment's --quick grid and resolution
 };
 
 struct RunOptions {
@@ -34,6 +35,7 @@ struct RunOptions {
   bool progress = true;
   std::string preset_name;       // recorded in each row
   std::string shader_root;       // where shaders/ lives
+  bool program_cache = true;     // reuse linked programs (glGetProgramBinary) across runs
 };
 
 // The CSV columns a run writes: fixed base columns, recorded environment, every registered

@@ -1,6 +1,12 @@
 #include "core/shader.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <iterator>
 #include <cstring>
 #include <fstream>
 #include <regex>
@@ -132,11 +138,13 @@ std::string format_defines(const Defines& defines) {
   return s.empty() ? "(none)" : s;
 }
 
-gl::Program ShaderLibrary::build(const std::vector<ShaderStage>& stages, const Defines& defines) const {
+gl::Program ShaderLibrary::compile_and_link(const std::vector<ShaderStage>& stages,
+                                            const std::vector<AssembledSource>& sources, const Defines& defines) const {
   gl::Program program(glCreateProgram());
   std::vector<gl::Shader> shaders;
-  for (const auto& st : stages) {
-    auto src = assemble(st.path, defines);
+  for (size_t i = 0; i < stages.size(); ++i) {
+    const auto& st = stages[i];
+    const auto& src = sources[i];
     gl::Shader sh(glCreateShader(st.stage));
     const char* text = src.text.c_str();
     glShaderSource(sh.get(), 1, &text, nullptr);
@@ -155,6 +163,7 @@ gl::Program ShaderLibrary::build(const std::vector<ShaderStage>& stages, const D
     glAttachShader(program.get(), sh.get());
     shaders.push_back(std::move(sh));
   }
+  if (!cache_dir_.empty()) glProgramParameteri(program.get(), GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
   glLinkProgram(program.get());
   GLint ok = 0;
   glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
@@ -169,6 +178,84 @@ gl::Program ShaderLibrary::build(const std::vector<ShaderStage>& stages, const D
     throw ShaderError("link error in " + names + " with defines [" + format_defines(defines) + "]:\n" + log);
   }
   for (const auto& sh : shaders) glDetachShader(program.get(), sh.get());
+  return program;
+}
+
+namespace {
+// FNV-1a: a stable 64-bit key for the cache file name (std::hash is not stable across builds).
+uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+}  // namespace
+
+std::filesystem::path default_program_cache_dir() {
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "oitbench" / "programs";
+  if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".cache" / "oitbench" / "programs";
+  return {};
+}
+
+void ShaderLibrary::enable_program_cache(std::filesystem::path dir, std::string driver) {
+  cache_dir_ = std::move(dir);
+  driver_ = std::move(driver);
+}
+
+gl::Program ShaderLibrary::build(const std::vector<ShaderStage>& stages, const Defines& defines) const {
+  std::vector<AssembledSource> sources;
+  std::string key_text = driver_;
+  for (const auto& st : stages) {
+    sources.push_back(assemble(st.path, defines));
+    key_text += "\n--stage " + std::to_string(st.stage) + "\n" + sources.back().text;
+  }
+  if (cache_dir_.empty()) return compile_and_link(stages, sources, defines);
+
+  char name[32];
+  std::snprintf(name, sizeof name, "%016llx.bin", static_cast<unsigned long long>(fnv1a(key_text)));
+  auto path = cache_dir_ / name;
+  // The file holds the binary format, the full key (to rule out hash collisions), then the image.
+  if (std::ifstream in{path, std::ios::binary}) {
+    GLenum format = 0;
+    uint64_t key_size = 0;
+    in.read(reinterpret_cast<char*>(&format), sizeof format);
+    in.read(reinterpret_cast<char*>(&key_size), sizeof key_size);
+    std::string key(key_size < (1u << 28) ? key_size : 0, '\0');
+    in.read(key.data(), static_cast<std::streamsize>(key.size()));
+    const bool header_ok = in.good() && key == key_text;
+    std::string image((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (header_ok && !image.empty()) {
+      gl::Program program(glCreateProgram());
+      glProgramBinary(program.get(), format, image.data(), static_cast<GLsizei>(image.size()));
+      GLint ok = 0;
+      glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+      while (glGetError() != GL_NO_ERROR) {
+      }
+      if (ok) {
+        ++counts_.hits;
+        return program;
+      }
+    }
+  }
+  ++counts_.misses;
+  auto program = compile_and_link(stages, sources, defines);
+  GLint length = 0;
+  glGetProgramiv(program.get(), GL_PROGRAM_BINARY_LENGTH, &length);
+  if (length > 0) {
+    std::string image(static_cast<size_t>(length), '\0');
+    GLenum format = 0;
+    glGetProgramBinary(program.get(), length, nullptr, &format, image.data());
+    std::error_code ec;
+    std::filesystem::create_directories(cache_dir_, ec);
+    auto tmp = path;
+    tmp += ".tmp" + std::to_string(::getpid());
+    if (std::ofstream out{tmp, std::ios::binary}) {
+      uint64_t key_size = key_text.size();
+      out.write(reinterpret_cast<const char*>(&format), sizeof format);
+      out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
+      out << key_text << image;
+      out.close();
+      std::filesystem::rename(tmp, path, ec);  // atomic: concurrent runs never read half a file
+    }
+  }
   return program;
 }
 

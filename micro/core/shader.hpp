@@ -41,12 +41,31 @@ class ShaderLibrary {
   AssembledSource assemble_text(const std::string& name, const std::string& text, const Defines& defines) const;
 
   // Compiles and links; throws ShaderError whose message holds the mapped log and the defines.
+  // With a program cache, a program linked before (same sources, defines and driver) is loaded
+  // from its glGetProgramBinary image instead: big unrolled sorts compile for seconds.
   gl::Program build(const std::vector<ShaderStage>& stages, const Defines& defines) const;
 
+  // Enables the program-binary cache in `dir` (created on demand); an empty path disables it.
+  // `driver` (vendor, renderer, version) is part of every key.
+  void enable_program_cache(std::filesystem::path dir, std::string driver);
+  struct CacheCounts {
+    unsigned hits = 0, misses = 0;
+  };
+  CacheCounts cache_counts() const { return counts_; }
+
  private:
+  gl::Program compile_and_link(const std::vector<ShaderStage>& stages, const std::vector<AssembledSource>& sources,
+                               const Defines& defines) const;
+
   std::filesystem::path root_;
   std::string version_;
+  std::filesystem::path cache_dir_;
+  std::string driver_;
+  mutable CacheCounts counts_;
 };
+
+// Where the program cache lives by default: $XDG_CACHE_HOME/oitbench/programs or ~/.cache/oitbench/programs.
+std::filesystem::path default_program_cache_dir();
 
 // Rewrites driver log locations ("0:12(3):" Mesa, "0(12) :" NVIDIA/AMD) into "file:line:".
 std::string map_shader_log(const std::string& log, const AssembledSource& source);

@@ -1,0 +1,202 @@
+// The command line end to end on the embedded default: contexts, CSV, errors, exit codes,
+// interruption and the watchdog.
+#include <signal.h>
+
+#include <fstream>
+
+#include "core/runner.hpp"
+#include "support/test_support.hpp"
+
+namespace oitbench::test {
+
+namespace {
+bool contains(const std::string& s, const std::string& what) { return s.find(what) != std::string::npos; }
+}  // namespace
+
+TEST(Cli, InfoReportsTheEglContext) {
+  auto r = run_oitbench({"info"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "backend:        egl")) << r.out;
+  EXPECT_TRUE(contains(r.out, "GL_RENDERER:")) << r.out;
+  EXPECT_TRUE(contains(r.out, "fragment_shader_interlock:")) << r.out;
+  EXPECT_TRUE(contains(r.out, "GL_MAX_SHADER_STORAGE_BLOCK_SIZE")) << r.out;
+}
+
+TEST(Cli, InfoListsEglDevices) {
+  auto r = run_oitbench({"info", "--backend", "egl-device"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "--device 0:")) << r.out;
+}
+
+#ifdef OITBENCH_HAVE_OSMESA
+TEST(Cli, InfoReportsTheOsmesaContext) {
+  auto r = run_oitbench({"info", "--backend", "osmesa"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "backend:        osmesa")) << r.out;
+}
+#endif
+
+class QuickRun : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(QuickRun, OccupancyWritesValidRowsWithEveryColumn) {
+  auto out = temp_dir("quick") / "occ.csv";
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--backend", GetParam(), "--set", "size=1,33", "--out",
+                         out.string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = read_csv_rows(out);
+  ASSERT_EQ(rows.size(), 4u);  // 2 variants x 2 sizes, one `total` row each
+  for (const char* col : {"schema", "experiment", "variant", "pass", "status", "valid", "backend", "gl_vendor",
+                          "gl_renderer", "gl_version", "width", "height", "reps", "warmup", "median_ms", "mad_ms",
+                          "min_ms", "max_ms", "mean_ms", "stddev_ms", "cpu_median_ms", "gpu_median_ms", "timer",
+                          "compile_ms", "git_sha", "timestamp_utc", "lp_num_threads", "size", "draws"})
+    for (auto& row : rows) EXPECT_FALSE(row[col].empty()) << "column " << col << " empty";
+  for (auto& row : rows) {
+    EXPECT_EQ(row["valid"], "1") << row["reason"];
+    EXPECT_EQ(row["status"], "ok");
+    EXPECT_EQ(row["backend"], GetParam());
+    EXPECT_EQ(row["schema"], std::to_string(kCsvSchema));
+    EXPECT_LE(std::stod(row["min_ms"]), std::stod(row["median_ms"]));
+    EXPECT_LE(std::stod(row["median_ms"]), std::stod(row["max_ms"]));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, QuickRun,
+                         ::testing::Values("egl"
+#ifdef OITBENCH_HAVE_OSMESA
+                                           ,
+                                           "osmesa"
+#endif
+                                           ));
+
+TEST(Cli, ABrokenShaderIsAnErrorRowAndTheRunGoesOn) {
+  auto out = temp_dir("broken") / "b.csv";
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "variant=dynamic", "--set", "size=4", "--set",
+                         "fault=compile-error,none", "--out", out.string(), "--no-progress"});
+  EXPECT_EQ(r.exit_code, 1) << "errors must give exit 1: " << r.err;
+  auto rows = read_csv_rows(out);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0]["status"], "error");
+  EXPECT_EQ(rows[0]["valid"], "0");
+  EXPECT_TRUE(contains(rows[0]["reason"], "shaders/common/oitbench.glsl:8:")) << rows[0]["reason"];
+  EXPECT_EQ(rows[1]["status"], "ok");
+  EXPECT_TRUE(contains(r.err, "shaders/common/oitbench.glsl:8:")) << r.err;
+}
+
+TEST(Cli, AWrongResultIsWrittenInvalidNotAveragedIn) {
+  auto out = temp_dir("wrong") / "w.csv";
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "size=8", "--set", "fault=wrong-result", "--out",
+                         out.string(), "--no-progress"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  auto rows = read_csv_rows(out);
+  ASSERT_EQ(rows.size(), 2u);
+  for (auto& row : rows) {
+    EXPECT_EQ(row["valid"], "0");
+    EXPECT_EQ(row["status"], "invalid");
+    EXPECT_TRUE(contains(row["reason"], "differ from the CPU reference")) << row["reason"];
+    EXPECT_TRUE(row["median_ms"].empty()) << "an invalid case must not carry a time";
+  }
+}
+
+TEST(Cli, UsageErrorsExitTwoAndListTheValidNames) {
+  auto e = run_oitbench({"run", "nosuch"});
+  EXPECT_EQ(e.exit_code, 2);
+  EXPECT_TRUE(contains(e.err, "unknown experiment 'nosuch'; valid experiments: ")) << e.err;
+  EXPECT_TRUE(contains(e.err, "occupancy")) << e.err;
+  auto p = run_oitbench({"run", "occupancy", "--set", "sise=3"});
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_TRUE(contains(p.err, "valid parameters: variant, size, draws")) << p.err;
+  auto v = run_oitbench({"run", "occupancy", "--set", "variant=static"});
+  EXPECT_EQ(v.exit_code, 2);
+  EXPECT_TRUE(contains(v.err, "valid values: dynamic|unrolled")) << v.err;
+  auto b = run_oitbench({"run", "occupancy", "--backend", "vulkan"});
+  EXPECT_EQ(b.exit_code, 2);
+  EXPECT_TRUE(contains(b.err, "egl")) << b.err;
+  auto pr = run_oitbench({"run", "--preset", "nosuch"});
+  EXPECT_EQ(pr.exit_code, 2);
+  EXPECT_TRUE(contains(pr.err, "unknown preset 'nosuch'; presets in")) << pr.err;
+  EXPECT_EQ(run_oitbench({"frobnicate"}).exit_code, 2);
+  EXPECT_EQ(run_oitbench({"run", "occupancy", "--resolution", "big"}).exit_code, 2);
+}
+
+TEST(Cli, HelpExplainsAndExitsZero) {
+  auto r = run_oitbench({"run", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(contains(r.out, "--set")) << r.out;
+  EXPECT_TRUE(contains(r.out, "Exit codes")) << r.out;
+  auto l = run_oitbench({"list"});
+  EXPECT_EQ(l.exit_code, 0);
+  EXPECT_TRUE(contains(l.out, "occupancy")) << l.out;
+  EXPECT_TRUE(contains(l.out, "allowed: dynamic|unrolled")) << l.out;
+}
+
+TEST(Cli, AppendingOntoADifferentHeaderIsRefused) {
+  auto out = temp_dir("append") / "other.csv";
+  std::ofstream(out) << "some,other,header\n1,2,3\n";
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "size=1", "--out", out.string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "exists with a different header")) << r.err;
+  EXPECT_EQ(read_csv_rows(out).size(), 1u) << "the old file was modified";
+}
+
+TEST(Cli, AppendingOntoTheSameHeaderKeepsEarlierRows) {
+  auto out = temp_dir("append") / "same.csv";
+  std::vector<std::string> args = {"run", "occupancy", "--quick", "--set", "size=1", "--set", "variant=dynamic",
+                                   "--out", out.string(), "--no-progress"};
+  ASSERT_EQ(run_oitbench(args).exit_code, 0);
+  ASSERT_EQ(run_oitbench(args).exit_code, 0);
+  EXPECT_EQ(read_csv_rows(out).size(), 2u);
+}
+
+TEST(Cli, RawSamplesHaveOneRowPerRepetition) {
+  auto dir = temp_dir("raw");
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "size=2", "--reps", "4", "--out",
+                         (dir / "s.csv").string(), "--raw", (dir / "r.csv").string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto raw = read_csv_rows(dir / "r.csv");
+  EXPECT_EQ(raw.size(), 8u);  // 2 variants x 4 repetitions
+  for (auto& row : raw) EXPECT_FALSE(row["cpu_ms"].empty());
+}
+
+TEST(Cli, CtrlCLeavesAParseableCsvWithTheFinishedRows) {
+  auto out = temp_dir("interrupt") / "i.csv";
+  // Many slow cases, one at a time: some finish before the signal, most do not.
+  auto r = run_oitbench_interrupted({"run", "occupancy", "--set", "variant=unrolled", "--set", "size=1..40",
+                                     "--resolution", "200x150", "--set", "draws=16", "--reps", "2",
+                                     "--no-interleave", "--out", out.string(), "--no-progress"},
+                                    4.0, SIGINT);
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_TRUE(contains(r.err, "interrupted")) << r.err;
+  auto rows = read_csv_rows(out);
+  EXPECT_GE(rows.size(), 1u);
+  EXPECT_LT(rows.size(), 40u);
+  for (auto& row : rows) {
+    EXPECT_EQ(row["status"], "ok");
+    EXPECT_FALSE(row["median_ms"].empty());
+    EXPECT_FALSE(row["timestamp_utc"].empty());  // the last column of the base set: the row is whole
+  }
+}
+
+TEST(Cli, TheWatchdogEndsAHungCaseAndTheRunGoesOn) {
+  auto out = temp_dir("hang") / "h.csv";
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "variant=dynamic", "--set", "size=1", "--set",
+                         "fault=hang,none", "--isolate", "always", "--timeout", "4", "--out", out.string(),
+                         "--no-progress"},
+                        120);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  auto rows = read_csv_rows(out);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0]["status"], "timeout");
+  EXPECT_TRUE(contains(rows[0]["reason"], "watchdog")) << rows[0]["reason"];
+  EXPECT_EQ(rows[1]["status"], "ok");
+}
+
+TEST(Cli, PresetRunsItsGrid) {
+  auto out = temp_dir("preset") / "p.csv";
+  auto r = run_oitbench({"run", "--preset", "smoke-test", "--out", out.string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = read_csv_rows(out);
+  ASSERT_FALSE(rows.empty());
+  for (auto& row : rows) EXPECT_EQ(row["preset"], "smoke-test");
+}
+
+}  // namespace oitbench::test
