@@ -340,9 +340,14 @@ ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings&
         }
         c = acc + t * bg;
       } else {
-        glm::vec3 acc(0.0f);
-        for (const auto& f : frags) acc += glm::vec3(f.colour) * f.colour.a * visibility(s, f.depth, relative);
-        c = acc + visibility(s, kDepthEmpty, relative) * bg;
+        glm::vec4 acc(0.0f);
+        for (const auto& f : frags) {
+          float w = f.colour.a * visibility(s, f.depth, relative);
+          acc += glm::vec4(glm::vec3(f.colour) * w, w);
+        }
+        float total = visibility(s, kDepthEmpty, relative), opacity = 1.0f - total;
+        if (!st.unguarded && acc.a > opacity * (1.0f + 1e-5f) + 1e-6f) acc = glm::vec4(glm::vec3(acc) * (opacity / acc.a), acc.a);
+        c = glm::vec3(acc) + total * bg;
       }
     }
     for (int k = 0; k < 3; ++k) m.rgb[p * 3 + k] = c[k];

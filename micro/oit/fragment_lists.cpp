@@ -46,6 +46,10 @@ void FragmentLists::bind() const {
 int FragmentLists::capture(GLuint program, const std::function<void()>& draw) {
   int rerenders = 0;
   const unsigned end = kListEnd, zero = 0;
+  // A shrink decided by the last frame happens now: reallocating right after a capture would
+  // discard the lists it just filled (found by a sparse scene, where the first pool is too big).
+  if (shrink_to_ && shrink_to_ < pool_) allocate(shrink_to_);
+  shrink_to_ = 0;
   for (;;) {
     glClearTexImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
     if (with_counts_) glClearTexImage(counts_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -61,7 +65,7 @@ int FragmentLists::capture(GLuint program, const std::function<void()>& draw) {
     fragments_ = count;
     if (count <= pool_) {
       // Steady state: keep the pool within 1.25x of what the frame needed (sized from this count).
-      if (pool_ > count + count / 4 && count > 0) allocate(count + count / 8);
+      if (pool_ > count + count / 4 && count > 0) shrink_to_ = count + count / 8;
       break;
     }
     // Overflowed: nodes past the pool were not written (nor linked); render the frame again.

@@ -45,7 +45,7 @@ class FragmentLists {
   void allocate(size_t pool);
   int width_, height_;
   bool with_counts_;
-  size_t pool_ = 0, fragments_ = 0;
+  size_t pool_ = 0, fragments_ = 0, shrink_to_ = 0;  // shrink_to_: the next capture's pool (0: keep)
   GLint max_texels_ = 0;
   gl::Texture heads_, counts_, nodes_view_, next_view_;
   gl::Buffer nodes_, next_, counter_;

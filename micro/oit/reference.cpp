@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <thread>
 
 namespace oitbench::oit {
@@ -85,7 +86,9 @@ void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool 
       for (size_t p = row * l.width; p < (row + 1) * l.width; ++p) {
         if (l.heads[p] == kListEnd) continue;
         gather(l, p, f);
-        std::sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) { return a.depth > b.depth; });
+        std::sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) {
+          return a.depth != b.depth ? a.depth > b.depth : a.colour > b.colour;  // the reference's tie-break
+        });
         glm::vec3 c = background;
         for (const auto& fr : f) {
           glm::vec4 k = unpack(fr.colour);
@@ -117,6 +120,7 @@ ImageError compare_with_reference(const std::vector<float>& rgba, const std::vec
     double worst = 0;
     for (int k = 0; k < 3; ++k) {
       double d = std::abs(got[k] - ref[p * 3 + k]);
+      if (std::isnan(d)) d = std::numeric_limits<double>::infinity();  // std::max would drop a NaN
       worst = std::max(worst, d);
       sum_sq += d * d;
     }

@@ -2,6 +2,12 @@
 //   MLAB, UMLAB: C_final = C_opaque * prod T_i + sum C_i prod_{j<i} T_j over the nodes near to far
 //                (section 3.7; UMLAB's unsorted nodes are first sorted by a register insertion sort)
 //   AT family:   C_final = accumulated sum (pass 2) + C_opaque * vis(infinity)
+// Fragments at exactly equal depth do not occlude each other in vis(z) (Eq. 2.3 counts only
+// nearer ones), so a stack of them adds up to more opacity than 1 - vis(infinity) and can leave
+// [0, 1]. The tie-break: such a pixel's sum is scaled so its opacity sum alpha * vis is exactly
+// 1 - vis(infinity) (equal-depth fragments share their layer in proportion to alpha: order-free,
+// so deterministic). Without ties the sum telescopes to at most 1 - vis(infinity) and nothing
+// changes. APPROX_UNGUARDED drops the scaling.
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "bindings.h"
@@ -45,7 +51,13 @@ void main() {
   }
   c += t * background;
 #else
-  vec3 c = texelFetch(accumulation, p, 0).rgb + visibility(p, DEPTH_EMPTY) * background;
+  vec4 acc = texelFetch(accumulation, p, 0);
+  float total = visibility(p, DEPTH_EMPTY);
+#if !defined(APPROX_UNGUARDED)
+  float opacity = 1.0 - total;
+  if (acc.a > opacity * (1.0 + 1e-5) + 1e-6) acc.rgb *= opacity / acc.a;
+#endif
+  vec3 c = acc.rgb + total * background;
 #endif
 #ifdef OITBENCH_FAULT_WRONG_RESULT
   if (p.x == p.y) c.r += 1.0 / 16.0;  // the diagonal off by 16/255: the validator must notice
