@@ -38,7 +38,7 @@ constexpr unsigned kOneBits = 0x3F800000u;
 constexpr double kModelTolerance = 3.0 / 255.0;
 constexpr int kSpinCap = 1 << 16;
 
-const std::vector<std::string> kNames = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "WBOIT", "unsorted"};
+const std::vector<std::string> kNames = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT", "unsorted"};
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -65,6 +65,10 @@ glm::vec4 mlab_value(Node n) {
 }
 Node mlab_node(glm::vec4 ct, float z) { return {pack4({ct.x, ct.y, ct.z, 1.0f - ct.w}), encode_depth(z)}; }
 float at_transmittance(Node n) { return std::bit_cast<float>(n.x ^ kOneBits); }
+float laat_transmittance(Node n) { return std::bit_cast<float>((n.x & ~31u) ^ kOneBits); }
+Node laat_node(float t, float z, int next) {
+  return {((std::bit_cast<unsigned>(t) ^ kOneBits) & ~31u) | static_cast<unsigned>(next + 1), encode_depth(z)};
+}
 Node at_node(float t, float z) { return {std::bit_cast<unsigned>(t) ^ kOneBits, encode_depth(z)}; }
 
 glm::vec4 merge(glm::vec4 a, glm::vec4 b) { return {glm::vec3(a) + a.w * glm::vec3(b), a.w * b.w}; }
@@ -227,10 +231,55 @@ void insert_uhat(std::vector<Node>& s, int n, float a, float z, bool unguarded) 
   }
 }
 
-float visibility(const std::vector<Node>& s, float z, bool relative) {
+// LAAT (section 6.2): s holds n node slots and the head slot (index n).
+void insert_laat(std::vector<Node>& s, int n, float a, float z) {
+  std::vector<float> t(n + 1), d(n + 1);
+  std::vector<int> seq(n + 1);
+  unsigned head = s[n].x;
+  int cnt = 0, k = 0, slot = static_cast<int>(head) - 1;
+  for (int i = 0; i < n && slot >= 0; ++i) {
+    t[slot] = laat_transmittance(s[slot]);
+    d[slot] = node_depth(s[slot]);
+    if (d[slot] <= z) k = cnt + 1;
+    seq[cnt++] = slot;
+    slot = static_cast<int>(s[slot].x & 31u) - 1;
+  }
+  t[n] = a;
+  d[n] = z;
+  for (int i = cnt; i > k; --i) seq[i] = seq[i - 1];
+  seq[k] = n;
+  int len = cnt + 1, new_slot = cnt;
+  if (cnt == n) {
+    float before = t[seq[0]];
+    int r = 1;
+    float best = kDepthEmpty;
+    for (int i = 1; i <= n; ++i) {
+      float after = before * t[seq[i]];
+      float e = (d[seq[i]] - d[seq[i - 1]]) * (before - after);
+      if (e < best) best = e, r = i;
+      before = after;
+    }
+    t[seq[r - 1]] *= t[seq[r]];
+    new_slot = seq[r];
+    for (int i = r; i < n; ++i) seq[i] = seq[i + 1];
+    len = n;
+  }
+  std::vector<Node> out = s;
+  for (int i = 0; i < len; ++i) {
+    int x = seq[i];
+    int next = i + 1 < len ? (seq[i + 1] == n ? new_slot : seq[i + 1]) : -1;
+    out[x == n ? new_slot : x] = laat_node(t[x], d[x], next);
+  }
+  out[n] = Node(static_cast<unsigned>((seq[0] == n ? new_slot : seq[0]) + 1), 0u);
+  s = out;
+}
+
+float visibility(const std::vector<Node>& s, float z, bool relative, bool laat) {
   float v = 1.0f;
-  for (const Node& node : s)
-    if (node_depth(node) < z) v = relative ? v * at_transmittance(node) : at_transmittance(node);
+  for (const Node& node : s) {
+    float t = laat ? laat_transmittance(node) : at_transmittance(node);
+    if (node_depth(node) < z) v = relative ? v * t : t;
+  }
   return v;
 }
 
@@ -271,7 +320,7 @@ ApproxTechnique parse_approx_technique(const std::string& name) {
 std::vector<ParamSpec> approx_params() {
   using K = ParamSpec::Kind;
   return {
-      {"nodes", "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT (the thesis: 4-16)", {"8"}, {}, {}, K::Integer, 2, 64},
+      {"nodes", "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16)", {"8"}, {}, {}, K::Integer, 2, 64},
       {"storage", "node storage of the per-pixel array techniques (shaders/storage/)", {"ssbo"}, {},
        {"ssbo", "texture3d", "interleaved"}},
       {"wboit_weight", "WBOIT depth weight: none (weighted average), eq7 (view distance), eq10 (window depth)",
@@ -296,7 +345,8 @@ ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings&
   std::vector<Node> s(n);
   using T = ApproxTechnique;
   const T tech = st.technique;
-  const bool relative = tech == T::Uat || tech == T::Uhat;
+  const bool laat = tech == T::Laat, relative = tech == T::Uat || tech == T::Uhat || laat;
+  if (laat) s.resize(n + 1);  // the head slot
   for (size_t p = 0; p < pixels; ++p) {
     arrival_order(l, p, frags);
     glm::vec3 c = bg;
@@ -324,6 +374,7 @@ ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings&
           case T::At: insert_at(s, n, ct.w, f.depth, false, st.unguarded); break;
           case T::Hat: insert_at(s, n, ct.w, f.depth, true, st.unguarded); break;
           case T::Uat: insert_uat(s, n, ct.w, f.depth); break;
+          case T::Laat: insert_laat(s, n, ct.w, f.depth); break;
           default: insert_uhat(s, n, ct.w, f.depth, st.unguarded); break;
         }
       }
@@ -342,10 +393,10 @@ ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings&
       } else {
         glm::vec4 acc(0.0f);
         for (const auto& f : frags) {
-          float w = f.colour.a * visibility(s, f.depth, relative);
+          float w = f.colour.a * visibility(s, f.depth, relative, laat);
           acc += glm::vec4(glm::vec3(f.colour) * w, w);
         }
-        float total = visibility(s, kDepthEmpty, relative), opacity = 1.0f - total;
+        float total = visibility(s, kDepthEmpty, relative, laat), opacity = 1.0f - total;
         if (!st.unguarded && acc.a > opacity * (1.0f + 1e-5f) + 1e-6f) acc = glm::vec4(glm::vec3(acc) * (opacity / acc.a), acc.a);
         c = glm::vec3(acc) + total * bg;
       }
@@ -442,8 +493,11 @@ class ApproxCase final : public CaseInstance {
     if (arrays_) {
       std::string storage = p.get("storage");
       layout_ = StorageLayout::parse(storage == "interleaved" ? "interleaved-4x4-a4" : storage);
-      for (const auto& x : layout_.defines(width_, height_, settings_.nodes)) d.push_back(x);
-      storage_ = std::make_unique<StorageResources>(layout_, width_, height_, settings_.nodes);
+      // LAAT keeps its list head in one more slot per pixel.
+      int slots = settings_.nodes + (tech == T::Laat ? 1 : 0);
+      if (layout_.kind == StorageLayout::Kind::Interleaved && slots % layout_.align) layout_.align = 1;
+      for (const auto& x : layout_.defines(width_, height_, slots)) d.push_back(x);
+      storage_ = std::make_unique<StorageResources>(layout_, width_, height_, slots);
       locks_ = gl::make_texture(GL_TEXTURE_2D);
       glTextureStorage2D(locks_.get(), 1, GL_R32UI, width_, height_);
       stats_ = gl::make_buffer();

@@ -17,15 +17,15 @@
 
 namespace oitbench::oit {
 
-enum class ApproxTechnique { Mlab, Umlab, At, Hat, Uat, Uhat, Wboit, Unsorted };
+enum class ApproxTechnique { Mlab, Umlab, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted };
 
-const std::vector<std::string>& approx_technique_names();  // MLAB UMLAB AT HAT UAT UHAT WBOIT unsorted
+const std::vector<std::string>& approx_technique_names();  // MLAB UMLAB AT HAT UAT UHAT LAAT WBOIT unsorted
 bool is_approx_technique(const std::string& name);
 ApproxTechnique parse_approx_technique(const std::string& name);  // throws std::invalid_argument
 
 struct ApproxSettings {
   ApproxTechnique technique = ApproxTechnique::Mlab;
-  int nodes = 8;                 // per-pixel array techniques
+  int nodes = 8;                 // per-pixel array techniques (LAAT stores one more: its head)
   std::string weight = "eq7";    // WBOIT: none | eq7 | eq10
   bool unguarded = false;        // the deliberately unguarded variant (hard-case tests)
   glm::vec2 near_far{0.1f, 10.f};  // the projection's planes (WBOIT eq7 works on view distance)

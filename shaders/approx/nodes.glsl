@@ -6,6 +6,8 @@
 //           empty = (C 0, T 1), the identity of the merge (the thesis initialises T = 0, which
 //           would zero the background term of a pixel with fewer than n fragments)
 //   AT:     x = floatBitsToUint(T) ^ floatBitsToUint(1.0): empty = T 1
+//   LAAT:   the AT encoding with the low 5 mantissa bits replaced by the link (next slot + 1,
+//           0 = end of list); the extra slot STORAGE_NODES - 1 holds the head (first slot + 1)
 // The same encodings are mirrored on the CPU in micro/oit/approx.cpp (the techniques' own models).
 #ifndef APPROX_NODES_GLSL
 #define APPROX_NODES_GLSL
@@ -23,7 +25,11 @@ vec4 mlab_value(uvec2 node) {  // (C, T)
 }
 uvec2 mlab_node(vec4 ct, float z) { return uvec2(packUnorm4x8(vec4(ct.rgb, 1.0 - ct.a)), encode_depth(z)); }
 
+#if defined(TECH_LAAT)
+float at_transmittance(uvec2 node) { return uintBitsToFloat((node.x & ~31u) ^ ONE_BITS); }
+#else
 float at_transmittance(uvec2 node) { return uintBitsToFloat(node.x ^ ONE_BITS); }
+#endif
 uvec2 at_node(float t, float z) { return uvec2(floatBitsToUint(t) ^ ONE_BITS, encode_depth(z)); }
 
 // The fragment colour exactly as the linked-list capture stores it (RGBA8), so every technique and
