@@ -317,7 +317,9 @@ class OitExperiment final : public Experiment {
   std::string name() const override { return "oit"; }
   std::string description() const override {
     return "exact OIT (Knowles 2013 BMA, 2014 RBS): per-pixel linked lists captured from a scene file, resolved by "
-           "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor";
+           "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
+           "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, micro/oit/approx.cpp) "
+           "is validated against each technique's own CPU model, its error vs the exact image reported as data";
   }
   std::vector<ParamSpec> params() const override {
     ParamSpec scene{"scene", "scene name in scenes/ (or a path to a scene .json)", {"planes", "hairball", "smoke"},
