@@ -14,6 +14,7 @@
 
 #include "core/registry.hpp"
 #include "core/render_target.hpp"
+#include "oit/approx.hpp"
 #include "oit/fragment_lists.hpp"
 #include "oit/gpu_mesh.hpp"
 #include "oit/reference.hpp"
@@ -30,8 +31,13 @@ using namespace oit;
 constexpr double kTolerance = 2.0 / 255.0;
 constexpr int kFirstInterval = 8;  // BMA intervals: 1-8, 9-16, 17-32, ... (Knowles 2014, section 4)
 
-const std::vector<std::string> kTechniques = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS",
-                                              "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE"};
+const std::vector<std::string> kExact = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS",
+                                         "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE"};
+std::vector<std::string> all_techniques() {  // exact, then approximate (micro/oit/approx.hpp)
+  std::vector<std::string> t = kExact;
+  for (const auto& a : approx_technique_names()) t.push_back(a);
+  return t;
+}
 
 unsigned next_pow2(unsigned v) {
   unsigned p = 1;
@@ -312,7 +318,9 @@ class OitExperiment final : public Experiment {
   std::string name() const override { return "oit"; }
   std::string description() const override {
     return "exact OIT (Knowles 2013 BMA, 2014 RBS): per-pixel linked lists captured from a scene file, resolved by "
-           "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor";
+           "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
+           "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, micro/oit/approx.cpp) "
+           "is validated against each technique's own CPU model, its error vs the exact image reported as data";
   }
   std::vector<ParamSpec> params() const override {
     ParamSpec scene{"scene", "scene name in scenes/ (or a path to a scene .json)", {"planes", "hairball", "smoke"},
@@ -321,7 +329,7 @@ class OitExperiment final : public Experiment {
                    {"fwd", "rev"}, {}, {}};
     ParamSpec technique{"technique", "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
                                      "a stencil mask; IS insertion, IMS insertion+merge, RBS-L register block sort",
-                        kTechniques, {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"}, kTechniques};
+                        kExact, {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"}, all_techniques()};
     ParamSpec detail{"detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"},
                      {"full", "small"}};
     ParamSpec block{"block", "RBS block size MAX_REGISTERS (the paper: 32)", {"32"}, {"8"}, {"4", "8", "16", "32"}};
@@ -330,18 +338,24 @@ class OitExperiment final : public Experiment {
                    {"0"}, {}, {}, ParamSpec::Kind::Integer, 0, 1e9};
     ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)", {"0"}, {}, {},
                         ParamSpec::Kind::Integer, 0, 4096};
-    return {scene, view, technique, detail, block, pool, max_frags};
+    std::vector<ParamSpec> ps = {scene, view, technique, detail, block, pool, max_frags};
+    for (auto& a : approx_params()) ps.push_back(std::move(a));
+    return ps;
   }
   std::vector<std::string> metric_columns() const override {
     return {"polygons",         "total_fragments", "peak_depth",     "mean_depth",    "fragments_per_s",
             "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
-            "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels"};
+            "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels",
+            // approximate techniques (micro/oit/approx.cpp)
+            "psnr", "frac_pixels_off", "model_rmse", "model_max_diff", "nonfinite", "capped_updates", "flicker",
+            "flicker_max", "flicker_pixels"};
   }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {128, 128}; }
   int max_interleave() const override { return 2; }  // each case holds its node pool
   std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
     try {
+      if (is_approx_technique(p.get("technique"))) return make_approx_case(p, ctx);
       return std::make_unique<OitCase>(p, ctx);
     } catch (const SceneError& e) {
       throw std::runtime_error(std::string("oit: ") + e.what());

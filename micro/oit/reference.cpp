@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <thread>
 
 namespace oitbench::oit {
@@ -93,7 +94,9 @@ void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool 
       for (size_t p = row * l.width; p < (row + 1) * l.width; ++p) {
         if (l.heads[p] == kListEnd) continue;
         gather(l, p, f);
-        std::sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) { return a.depth > b.depth; });
+        std::sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) {
+          return a.depth != b.depth ? a.depth > b.depth : a.colour > b.colour;  // the reference's tie-break
+        });
         glm::vec3 c = background;
         for (const auto& fr : f) {
           glm::vec4 k = unpack(fr.colour);
@@ -121,15 +124,12 @@ ImageError compare_with_reference(const std::vector<float>& rgba, const std::vec
     const float* g = &rgba[p * 4];
     bool covered = stats.depth[p] > 0;
     if (g[3] != (covered ? 1.0f : 0.0f)) ++e.visit_errors;
-    if (stats.tied[p]) {
-      // Equal depths leave the order open: the sorts may keep either, the reference picks one.
-      ++e.tied_skipped;
-      continue;
-    }
+    // Equal depths are compared too: every resolve breaks depth ties by colour bits, like the reference.
     glm::dvec3 got = g[3] == 0.0f ? glm::dvec3(background) : glm::dvec3(g[0], g[1], g[2]);
     double worst = 0;
     for (int k = 0; k < 3; ++k) {
       double d = std::abs(got[k] - ref[p * 3 + k]);
+      if (std::isnan(d)) d = std::numeric_limits<double>::infinity();  // std::max would drop a NaN
       worst = std::max(worst, d);
       sum_sq += d * d;
     }

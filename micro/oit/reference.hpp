@@ -36,7 +36,6 @@ struct ImageError {
   double max_abs_error = 0, rmse = 0;
   size_t bad_pixels = 0;         // above the tolerance
   size_t visit_errors = 0;       // covered pixels not resolved exactly once, or uncovered ones resolved
-  size_t tied_skipped = 0;       // pixels with equal-depth fragments of different colours: any order is exact
   std::string first_bad;         // "pixel (x,y): got (r,g,b), reference (r,g,b)"
 };
 // Compares a resolve's RGBA output (see above) with the reference; `tolerance` per channel.

@@ -5,7 +5,7 @@ void sort_insertion(int n) {
   for (int j = 1; j < n; ++j) {
     uvec2 key = frags[j];
     int i = j - 1;
-    while (i >= 0 && frags[i].y < key.y) {
+    while (i >= 0 && FRAG_FARTHER(key, frags[i])) {
       frags[i + 1] = frags[i];
       --i;
     }

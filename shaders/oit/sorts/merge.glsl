@@ -9,7 +9,7 @@ void sort_merge(int n) {
       for (int k = 0; k < nl; ++k) mergeLeft[k] = frags[lo + k];
       int a = 0, b = mid, o = lo;
       while (a < nl && b < hi) {
-        if (mergeLeft[a].y >= frags[b].y) frags[o++] = mergeLeft[a++];
+        if (!FRAG_FARTHER(frags[b], mergeLeft[a])) frags[o++] = mergeLeft[a++];
         else frags[o++] = frags[b++];
       }
       while (a < nl) frags[o++] = mergeLeft[a++];

@@ -11,7 +11,7 @@ uvec2 registers[RBS_M];
 // outer conditionals shrink the network to the pixel's count; the inner ones stop inserting an
 // element once it is in place. RS_INSj inserts element j: swap it down while out of order.
 bool rs_swap(int a, int b) {
-  if (registers[a].y < registers[b].y) {
+  if (FRAG_FARTHER(registers[b], registers[a])) {
     uvec2 t = registers[a];
     registers[a] = registers[b];
     registers[b] = t;
@@ -203,11 +203,11 @@ vec3 resolve_pixel(uint node) {
   vec3 c = background;
   for (int f = 0; f < n; ++f) {
     int b = -1;
-    uint best = 0u;
+    uvec2 best = uvec2(0u);
     for (int j = 0; j < MAX_K; ++j)
-      if (blockIdx[j] < blockEnd[j] && (b < 0 || candidate[j].y > best)) {
+      if (blockIdx[j] < blockEnd[j] && (b < 0 || FRAG_FARTHER(candidate[j], best))) {
         b = j;
-        best = candidate[j].y;
+        best = candidate[j];
       }
     for (int j = 0; j < MAX_K; ++j)
       if (j == b) {

@@ -21,6 +21,10 @@ layout(binding = 3, r32ui) uniform uimage2D fragCounts;
 #define FRAG_VALID(node) ((node) != LIST_END)
 #define FRAG_NEXT(node) imageLoad(nodeNext, int(node)).r
 #define FRAG_LOAD(node) imageLoad(nodeData, int(node)).rg
+// True when fragment a goes before b in far-to-near order. Equal depths are ordered by colour bits
+// (as the CPU reference does), so the result never depends on the list order, which on a GPU
+// changes from frame to frame.
+#define FRAG_FARTHER(a, b) ((a).y > (b).y || ((a).y == (b).y && (a).x > (b).x))
 
 #ifdef STORAGE_CAPTURE
 layout(binding = 0, offset = 0) uniform atomic_uint fragCounter;

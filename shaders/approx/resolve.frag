@@ -1,0 +1,66 @@
+// The full-screen resolve of the per-pixel array techniques, onto the opaque background:
+//   MLAB, UMLAB: C_final = C_opaque * prod T_i + sum C_i prod_{j<i} T_j over the nodes near to far
+//                (section 3.7; UMLAB's unsorted nodes are first sorted by a register insertion sort)
+//   AT family:   C_final = accumulated sum (pass 2) + C_opaque * vis(infinity)
+// Fragments at exactly equal depth do not occlude each other in vis(z) (Eq. 2.3 counts only
+// nearer ones), so a stack of them adds up to more opacity than 1 - vis(infinity) and can leave
+// [0, 1]. The tie-break: such a pixel's sum is scaled so its opacity sum alpha * vis is exactly
+// 1 - vis(infinity) (equal-depth fragments share their layer in proportion to alpha: order-free,
+// so deterministic). Without ties the sum telescopes to at most 1 - vis(infinity) and nothing
+// changes. APPROX_UNGUARDED drops the scaling.
+#include "../common/oitbench.glsl"
+#include "../storage/storage.glsl"
+#include "bindings.h"
+// Included outside the #if: the shader assembler inlines each file once, where first named.
+#include "nodes.glsl"
+#include "visibility.glsl"
+#if !defined(TECH_MLAB) && !defined(TECH_UMLAB)
+layout(binding = APPROX_ACCUM_UNIT) uniform sampler2D accumulation;
+#endif
+
+uniform vec3 background;
+uniform int zero;
+layout(location = 0) out vec4 fragColour;
+
+#if defined(TECH_MLAB) || defined(TECH_UMLAB)
+vec4 rC[N];
+float rZ[N];
+#endif
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+#if defined(TECH_MLAB) || defined(TECH_UMLAB)
+  for (int i = 0; i < N; ++i) {
+    uvec2 node = STORAGE_LOAD(p, i);
+    rC[i] = mlab_value(node);
+    rZ[i] = node_depth(node);
+  }
+#if defined(TECH_UMLAB)
+  for (int i = 1; i < N; ++i)
+    for (int j = i; j > 0; --j)
+      if (rZ[j - 1] > rZ[j]) {
+        vec4 tc = rC[j - 1]; rC[j - 1] = rC[j]; rC[j] = tc;
+        float tz = rZ[j - 1]; rZ[j - 1] = rZ[j]; rZ[j] = tz;
+      }
+#endif
+  vec3 c = vec3(0.0);
+  float t = 1.0;
+  for (int i = 0; i < N; ++i) {
+    c += t * rC[i].rgb;
+    t *= rC[i].a;
+  }
+  c += t * background;
+#else
+  vec4 acc = texelFetch(accumulation, p, 0);
+  float total = visibility(p, DEPTH_EMPTY);
+#if !defined(APPROX_UNGUARDED)
+  float opacity = 1.0 - total;
+  if (acc.a > opacity * (1.0 + 1e-5) + 1e-6) acc.rgb *= opacity / acc.a;
+#endif
+  vec3 c = acc.rgb + total * background;
+#endif
+#ifdef OITBENCH_FAULT_WRONG_RESULT
+  if (p.x == p.y) c.r += 1.0 / 16.0;  // the diagonal off by 16/255: the validator must notice
+#endif
+  fragColour = vec4(c + oitbench_fault_hang(zero), 1.0);
+}
