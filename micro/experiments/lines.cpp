@@ -1,0 +1,324 @@
+// lines: transparency of line primitives (Sintorn et al., poster: hair as line segments sorted per
+// primitive into 256 depth slices by a stream-split radix sort in CUDA). A procedural hair model of
+// `segments` line segments is rendered
+//   technique=exact:  per fragment: linked-list capture + the exact BASE-IMS resolve (oit experiment)
+//   technique=slices: per primitive: each segment's depth slice, a stable radix sort (count, prefix
+//                     sum, scatter per bit, in compute shaders), then one back-to-front blended draw
+// The slice sort is validated exactly (a stable CPU sort of the same keys); its image's error against
+// the per-fragment exact reference is data (`rmse` etc.), since slices are an approximation.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/registry.hpp"
+#include "core/render_target.hpp"
+#include "oit/approx.hpp"
+#include "oit/fragment_lists.hpp"
+#include "oit/reference.hpp"
+
+namespace oitbench {
+
+namespace {
+
+using namespace oit;
+
+struct LineVertex {  // matches shaders/lines/*.comp's Vertex and capture.vert's locations 0 and 1
+  glm::vec4 position;
+  glm::vec4 colour;
+};
+
+constexpr float kHeadRadius = 0.5f, kCameraDistance = 3.0f;
+
+// Strands of 16 segments growing from a sphere: a random walk that starts along the normal and bends
+// down under "gravity", with colours of a few hair tones quantised to RGBA8 (what the capture stores).
+std::vector<LineVertex> make_hair(size_t segments, float alpha, unsigned seed) {
+  constexpr int kPerStrand = 16;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const glm::vec3 tones[] = {{0.45f, 0.30f, 0.18f}, {0.60f, 0.45f, 0.25f}, {0.30f, 0.20f, 0.12f}, {0.75f, 0.62f, 0.40f}};
+  auto q = [](float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; };
+  std::vector<LineVertex> v;
+  v.reserve(segments * 2);
+  while (v.size() < segments * 2) {
+    glm::vec3 n;
+    do n = {u(rng), u(rng), u(rng)};
+    while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
+    n = glm::normalize(n);
+    if (n.y < -0.3f) continue;  // no hair under the chin
+    glm::vec3 p = n * kHeadRadius, dir = n;
+    glm::vec3 tone = tones[rng() % 4] * (0.85f + 0.15f * u(rng));
+    glm::vec4 c(q(tone.r), q(tone.g), q(tone.b), q(alpha));
+    for (int s = 0; s < kPerStrand && v.size() < segments * 2; ++s) {
+      glm::vec3 next = p + 0.06f * dir;
+      v.push_back({glm::vec4(p, 1), c});
+      v.push_back({glm::vec4(next, 1), c});
+      p = next;
+      dir = glm::normalize(dir + glm::vec3(0.15f * u(rng), -0.12f, 0.15f * u(rng)));
+    }
+  }
+  return v;
+}
+
+unsigned next_pow2(unsigned v) {
+  unsigned p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+class LinesCase final : public CaseInstance {
+ public:
+  LinesCase(const ParamSet& p, CaseContext& ctx)
+      : ctx_(ctx),
+        slices_mode_(p.get("technique") == "slices"),
+        segments_(static_cast<size_t>(p.get_int("segments"))),
+        slices_(static_cast<int>(p.get_int("slices"))),
+        target_(ctx.width(), ctx.height()),
+        lists_(ctx.width(), ctx.height(), segments_ * 8, false) {
+    auto verts = make_hair(segments_, static_cast<float>(p.get_double("alpha")), ctx.seed());
+    vertices_ = gl::make_buffer();
+    glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(verts.size() * sizeof(LineVertex)), verts.data(), 0);
+    vao_ = gl::make_vertex_array();
+    glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, sizeof(LineVertex));
+    for (GLuint a : {0u, 1u}) {
+      glEnableVertexArrayAttrib(vao_.get(), a);
+      glVertexArrayAttribFormat(vao_.get(), a, a == 0 ? 3 : 4, GL_FLOAT, GL_FALSE, a == 0 ? 0 : 16);
+      glVertexArrayAttribBinding(vao_.get(), a, 0);
+    }
+    float aspect = static_cast<float>(ctx.width()) / ctx.height();
+    view_proj_ = glm::perspective(glm::radians(40.0f), aspect, 1.0f, 6.0f) *
+                 glm::lookAt(glm::vec3(0, 0.1f, kCameraDistance), glm::vec3(0, -0.1f, 0), glm::vec3(0, 1, 0));
+    capture_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}}, {});
+    glProgramUniformMatrix4fv(capture_.get(), glGetUniformLocation(capture_.get(), "viewProj"), 1, GL_FALSE,
+                              &view_proj_[0][0]);
+    // One capture now: the exact reference, and MAX_FRAGS for the exact resolve.
+    capture();
+    auto host = lists_.read_back();
+    stats_ = list_stats(host);
+    reference_ = composite_reference(host, background_);
+    if (!slices_mode_) {
+      max_frags_ = std::max(8u, next_pow2(stats_.peak_depth));
+      resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}},
+                           {{"MAX_FRAGS", std::to_string(max_frags_)}, {"SORT_IMS", ""}});
+      glProgramUniform3f(resolve_.get(), glGetUniformLocation(resolve_.get(), "background"), background_.r,
+                         background_.g, background_.b);
+      return;
+    }
+    if (slices_ & (slices_ - 1)) throw std::invalid_argument("slices must be a power of two");
+    bits_ = 0;
+    while ((1 << bits_) < slices_) ++bits_;
+    const Defines slice_defines = {{"SLICES", std::to_string(slices_)}};
+    keys_prog_ = ctx.build({{GL_COMPUTE_SHADER, "lines/slice_keys.comp"}}, slice_defines);
+    glProgramUniformMatrix4fv(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "viewProj"), 1, GL_FALSE,
+                              &view_proj_[0][0]);
+    // The hair lies within the head radius plus the longest strand: that depth range is cut into slices.
+    const float reach = kHeadRadius + 16 * 0.06f;
+    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "nearDistance"), kCameraDistance - reach);
+    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "farDistance"), kCameraDistance + reach);
+    for (const char* phase : {"PHASE_LOCAL", "PHASE_BLOCKS", "PHASE_SCATTER"})
+      split_.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
+    emit_ = ctx.build({{GL_COMPUTE_SHADER, "lines/emit_indices.comp"}}, {});
+    blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "lines/blend.frag"}}, {});
+    glProgramUniformMatrix4fv(blend_.get(), glGetUniformLocation(blend_.get(), "viewProj"), 1, GL_FALSE,
+                              &view_proj_[0][0]);
+    const GLsizeiptr n = static_cast<GLsizeiptr>(segments_ * sizeof(unsigned));
+    for (auto* b : {&keys0_, &index0_, &keys_[0], &keys_[1], &index_[0], &index_[1], &local_}) {
+      *b = gl::make_buffer();
+      glNamedBufferStorage(b->get(), n, nullptr, 0);
+    }
+    blocks_ = gl::make_buffer();
+    glNamedBufferStorage(blocks_.get(), static_cast<GLsizeiptr>((segments_ / 256 + 2) * sizeof(unsigned)), nullptr, 0);
+    elements_ = gl::make_buffer();
+    glNamedBufferStorage(elements_.get(), 2 * n, nullptr, 0);
+  }
+
+  void run(PassTimer& timer) override {
+    if (!slices_mode_) {
+      {
+        auto t = timer.pass("capture");
+        capture();
+      }
+      auto t = timer.pass("resolve");
+      target_.bind();
+      const float clear[4] = {0, 0, 0, 0};
+      glClearNamedFramebufferfv(target_.framebuffer(), GL_COLOR, 0, clear);
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      lists_.bind();
+      glUseProgram(resolve_.get());
+      quad_.draw();
+      glDisable(GL_BLEND);
+      return;
+    }
+    const GLuint groups = static_cast<GLuint>((segments_ + 255) / 256), count = static_cast<GLuint>(segments_);
+    {
+      auto t = timer.pass("keys");
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, keys0_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, index0_.get());
+      glUseProgram(keys_prog_.get());
+      glUniform1ui(glGetUniformLocation(keys_prog_.get(), "segments"), count);
+      glDispatchCompute(groups, 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+      auto t = timer.pass("sort");
+      for (int bit = 0; bit < bits_; ++bit) {
+        const gl::Buffer& kin = bit == 0 ? keys0_ : keys_[(bit + 1) % 2];
+        const gl::Buffer& iin = bit == 0 ? index0_ : index_[(bit + 1) % 2];
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, kin.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, iin.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, keys_[bit % 2].get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, index_[bit % 2].get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, local_.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, blocks_.get());
+        for (size_t phase = 0; phase < split_.size(); ++phase) {
+          glUseProgram(split_[phase].get());
+          glUniform1ui(glGetUniformLocation(split_[phase].get(), "count"), count);
+          glUniform1ui(glGetUniformLocation(split_[phase].get(), "bit"), static_cast<GLuint>(bit));
+          glDispatchCompute(phase == 1 ? 1 : groups, 1, 1);
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+      }
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sorted_index().get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, elements_.get());
+      glUseProgram(emit_.get());
+      glUniform1ui(glGetUniformLocation(emit_.get(), "segments"), count);
+      glDispatchCompute(groups, 1, 1);
+      glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT);
+    }
+    auto t = timer.pass("blend");
+    target_.bind();
+    const float clear[4] = {background_.r, background_.g, background_.b, 1};
+    glClearNamedFramebufferfv(target_.framebuffer(), GL_COLOR, 0, clear);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glUseProgram(blend_.get());
+    glVertexArrayElementBuffer(vao_.get(), elements_.get());
+    glBindVertexArray(vao_.get());
+    glDrawElements(GL_LINES, static_cast<GLsizei>(2 * segments_), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_BLEND);
+  }
+
+  Validation validate() override {
+    Validation v;
+    auto px = target_.read_rgba32f();
+    std::vector<float> rgb(px.size() / 4 * 3);
+    size_t nonfinite = 0;
+    for (size_t p = 0; p < px.size() / 4; ++p)
+      for (int k = 0; k < 3; ++k) {
+        // The exact resolve leaves uncovered pixels at alpha 0: they show the background.
+        float c = (!slices_mode_ && px[p * 4 + 3] == 0.0f) ? background_[k] : px[p * 4 + k];
+        nonfinite += !std::isfinite(c);
+        rgb[p * 3 + k] = c;
+      }
+    auto err = approx_error(rgb, reference_);
+    v.metrics = {{"line_segments", std::to_string(segments_)},
+                 {"total_fragments", std::to_string(stats_.total_fragments)},
+                 {"peak_depth", std::to_string(stats_.peak_depth)},
+                 {"rmse", std::to_string(err.rmse)},
+                 {"psnr", std::to_string(err.psnr)},
+                 {"max_abs_error", std::to_string(err.max_abs_error)},
+                 {"frac_pixels_off", std::to_string(err.frac_pixels_off)},
+                 {"nonfinite", std::to_string(nonfinite)}};
+    if (nonfinite) {
+      v.reason = std::to_string(nonfinite) + " non-finite channel(s) in the image";
+      return v;
+    }
+    if (!slices_mode_) {
+      auto e = compare_with_reference(px, reference_, stats_, background_, target_.width(), 2.0 / 255);
+      v.valid = e.bad_pixels == 0 && e.visit_errors == 0 && stats_.peak_depth <= max_frags_;
+      if (!v.valid) v.reason = "exact line resolve differs from the CPU reference: " + e.first_bad;
+      return v;
+    }
+    // The sort: the GPU's own keys, sorted stably on the CPU, must give exactly the GPU's order.
+    std::vector<unsigned> keys(segments_), order(segments_), gpu(segments_);
+    glGetNamedBufferSubData(keys0_.get(), 0, static_cast<GLsizeiptr>(segments_ * sizeof(unsigned)), keys.data());
+    glGetNamedBufferSubData(sorted_index().get(), 0, static_cast<GLsizeiptr>(segments_ * sizeof(unsigned)), gpu.data());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return keys[a] < keys[b]; });
+    auto wrong = std::mismatch(order.begin(), order.end(), gpu.begin());
+    if (wrong.first != order.end()) {
+      v.reason = "radix sort differs from a stable CPU sort at position " +
+                 std::to_string(wrong.first - order.begin()) + " (segment " + std::to_string(*wrong.second) +
+                 ", expected " + std::to_string(*wrong.first) + ")";
+      return v;
+    }
+    const auto [lo, hi] = std::minmax_element(rgb.begin(), rgb.end());
+    v.valid = *lo >= -1e-6f && *hi <= 1.0f + 1e-6f;
+    if (!v.valid) v.reason = "blended colour outside [0, 1]";
+    return v;
+  }
+
+ private:
+  const gl::Buffer& sorted_index() const { return index_[(bits_ - 1) % 2]; }
+
+  void capture() {
+    target_.bind();
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    lists_.capture(capture_.get(), [&] {
+      glBindVertexArray(vao_.get());
+      glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(2 * segments_));
+    });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+
+  CaseContext ctx_;
+  bool slices_mode_;
+  size_t segments_;
+  int slices_, bits_ = 0;
+  unsigned max_frags_ = 0;
+  glm::vec3 background_{1.0f, 1.0f, 1.0f};
+  glm::mat4 view_proj_{1.0f};
+  RenderTarget target_;
+  FullscreenTriangle quad_;
+  FragmentLists lists_;
+  ListStats stats_;
+  std::vector<double> reference_;
+  gl::Buffer vertices_, keys0_, index0_, keys_[2], index_[2], local_, blocks_, elements_;
+  gl::VertexArray vao_;
+  gl::Program capture_, resolve_, keys_prog_, emit_, blend_;
+  std::vector<gl::Program> split_;
+};
+
+class LinesExperiment final : public Experiment {
+ public:
+  std::string name() const override { return "lines"; }
+  std::string description() const override {
+    return "hair as line segments (Sintorn et al. poster): per-fragment exact OIT vs a per-primitive stream-split "
+           "radix sort into depth slices, blended back to front; time and error against exact";
+  }
+  std::vector<ParamSpec> params() const override {
+    ParamSpec technique{"technique", "exact: linked lists + BASE-IMS resolve; slices: per-segment radix sort + blend",
+                        {"exact", "slices"}, {}, {"exact", "slices"}};
+    ParamSpec segments{"segments", "line segments (the poster's models: 90 K to 1.8 M)", {"90000", "620000", "1800000"},
+                       {"20000"}, {}, ParamSpec::Kind::Integer, 16, 50000000};
+    ParamSpec slices{"slices", "depth slices of the primitive sort (a power of two)", {"256"}, {}, {},
+                     ParamSpec::Kind::Integer, 2, 65536};
+    ParamSpec alpha{"alpha", "opacity of every hair segment", {"0.3"}, {}, {}, ParamSpec::Kind::Number, 0, 1};
+    return {technique, segments, slices, alpha};
+  }
+  std::vector<std::string> metric_columns() const override {
+    return {"line_segments", "total_fragments", "peak_depth", "rmse", "psnr", "max_abs_error", "frac_pixels_off",
+            "nonfinite"};
+  }
+  Resolution default_resolution() const override { return {512, 512}; }
+  Resolution quick_resolution() const override { return {128, 128}; }
+  int max_interleave() const override { return 2; }
+  std::string unsupported_reason(const GlInfo& gl, const ParamSet&) const override {
+    return gl.has_compute() ? "" : "needs compute shaders (GL 4.3)";
+  }
+  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
+    return std::make_unique<LinesCase>(p, ctx);
+  }
+};
+
+}  // namespace
+
+void register_lines(Registry& registry) { registry.add(std::make_unique<LinesExperiment>()); }
+
+}  // namespace oitbench

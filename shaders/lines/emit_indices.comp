@@ -1,0 +1,12 @@
+// The sorted segment order as an element buffer for one GL_LINES draw.
+#include "../common/oitbench.glsl"
+layout(local_size_x = 256) in;
+layout(std430, binding = 0) readonly buffer Sorted { uint sorted[]; };
+layout(std430, binding = 1) writeonly buffer Elements { uint elements[]; };
+uniform uint segments;
+void main() {
+  uint j = gl_GlobalInvocationID.x;
+  if (j >= segments) return;
+  elements[2u * j] = 2u * sorted[j];
+  elements[2u * j + 1u] = 2u * sorted[j] + 1u;
+}
