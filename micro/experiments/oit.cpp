@@ -14,9 +14,12 @@
 
 #include "core/registry.hpp"
 #include "core/render_target.hpp"
+#include "oit/bma_auto.hpp"
+#include "oit/compute_resolve.hpp"
 #include "oit/fragment_lists.hpp"
 #include "oit/gpu_mesh.hpp"
 #include "oit/reference.hpp"
+#include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
 
 namespace oitbench {
@@ -30,8 +33,9 @@ using namespace oit;
 constexpr double kTolerance = 2.0 / 255.0;
 constexpr int kFirstInterval = 8;  // BMA intervals: 1-8, 9-16, 17-32, ... (Knowles 2014, section 4)
 
-const std::vector<std::string> kTechniques = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS",
-                                              "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE"};
+const std::vector<std::string> kTechniques = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS",   "BMA-IMS",
+                                              "BMA-RBS-L", "CPU-NATIVE", "CS-IS",    "CS-IMS", "CS-RBS-L",
+                                              "RBS-G",   "BMA-AUTO"};
 
 unsigned next_pow2(unsigned v) {
   unsigned p = 1;
@@ -56,6 +60,8 @@ class OitCase final : public CaseInstance {
         technique_(p.get("technique")),
         bma_(technique_.starts_with("BMA-")),
         native_(technique_ == "CPU-NATIVE"),
+        compute_(technique_.starts_with("CS-")),
+        auto_(technique_ == "BMA-AUTO"),
         block_(static_cast<int>(p.get_int("block"))),
         scene_(load_scene(p.get("scene"))),
         target_(ctx.width(), ctx.height(), GL_RGBA32F, true) {
@@ -81,6 +87,13 @@ class OitCase final : public CaseInstance {
     long long forced = p.get_int("max_frags");
     max_frags_ = forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(stats.peak_depth));
     if (native_) return;
+    if (compute_) {
+      auto [gx, gy] = parse_group(p.get("cs_group"));
+      compute_resolve_ = std::make_unique<ComputeResolve>(
+          ctx, sort_defines(sort_of_technique(technique_), max_frags_, static_cast<unsigned>(block_)),
+          scene_.background, gx, gy);
+      return;
+    }
     if (bma_) {
       count_ = ctx.build({{GL_COMPUTE_SHADER, "oit/bma_count.comp"}}, {});
       mask_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/bma_mask.frag"}}, {});
@@ -92,10 +105,11 @@ class OitCase final : public CaseInstance {
       for (unsigned d : stats.depth)
         if (d > 0) used[interval_of(d)] = true;
       interval_programs_.resize(interval_tops_.size());
+      if (auto_) calibrate_bma_auto();
       for (size_t i = 0; i < used.size(); ++i)
         if (used[i]) interval_program(i);
     } else {
-      base_ = build_resolve(max_frags_);
+      base_ = build_resolve(sort_of_technique(technique_), max_frags_);
     }
   }
 
@@ -116,6 +130,11 @@ class OitCase final : public CaseInstance {
       resolve_native(host_, scene_.background, 0, wrong_result_, native_out_);
       return;
     }
+    if (compute_) {
+      auto t = timer.pass("resolve");
+      compute_resolve_->run(*lists_, target_);
+      return;
+    }
     if (!bma_) {
       auto t = timer.pass("resolve");
       begin_resolve();
@@ -123,22 +142,50 @@ class OitCase final : public CaseInstance {
       end_resolve();
       return;
     }
-    std::vector<unsigned> hist(32, 0);
+    std::vector<unsigned> pixels;
     {
       auto t = timer.pass("count");
-      glNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
-      lists_->bind();
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, histogram_.get());
-      glUseProgram(count_.get());
-      glDispatchCompute((width_ + 7) / 8, (height_ + 7) / 8, 1);
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      glGetNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
+      pixels = count_intervals();
     }
+    {
+      auto t = timer.pass("mask");
+      mask_intervals(pixels);
+    }
+    auto t = timer.pass("resolve");
+    begin_resolve();
+    glEnable(GL_STENCIL_TEST);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    intervals_run_ = 0;
+    for (size_t i = 0; i < interval_tops_.size(); ++i) {
+      if (!pixels[i]) continue;  // no pixels: the interval's program never runs
+      glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
+      draw_resolve(interval_program(i));
+      ++intervals_run_;
+    }
+    glDisable(GL_STENCIL_TEST);
+    end_resolve();
+    interval_pixels_ = pixels;
+  }
+
+  // BMA's count pass: pixels per depth interval (pixels deeper than MAX_FRAGS in the last one).
+  std::vector<unsigned> count_intervals() {
+    std::vector<unsigned> hist(32, 0);
+    glNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
+    lists_->bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, histogram_.get());
+    glUseProgram(count_.get());
+    glDispatchCompute((width_ + 7) / 8, (height_ + 7) / 8, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
     // Pixels deeper than MAX_FRAGS belong to the last interval (truncated there, and counted).
     std::vector<unsigned> pixels(interval_tops_.size(), 0);
     for (size_t i = 0; i < hist.size(); ++i) pixels[std::min(i, pixels.size() - 1)] += hist[i];
+    return pixels;
+  }
+
+  // BMA's mask pass: stencil value i + 1 on the pixels of interval i.
+  void mask_intervals(const std::vector<unsigned>& pixels) {
     {
-      auto t = timer.pass("mask");
       glClearNamedFramebufferiv(target_.framebuffer(), GL_STENCIL, 0, std::array<GLint, 1>{0}.data());
       glEnable(GL_STENCIL_TEST);
       glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -157,20 +204,6 @@ class OitCase final : public CaseInstance {
       glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       glDisable(GL_STENCIL_TEST);
     }
-    auto t = timer.pass("resolve");
-    begin_resolve();
-    glEnable(GL_STENCIL_TEST);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    intervals_run_ = 0;
-    for (size_t i = 0; i < interval_tops_.size(); ++i) {
-      if (!pixels[i]) continue;  // no pixels: the interval's program never runs
-      glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
-      draw_resolve(interval_program(i));
-      ++intervals_run_;
-    }
-    glDisable(GL_STENCIL_TEST);
-    end_resolve();
-    interval_pixels_ = pixels;
   }
 
   Validation validate() override {
@@ -184,6 +217,12 @@ class OitCase final : public CaseInstance {
     m["mean_depth"] = fmt(stats.mean_depth);
     m["max_frags"] = std::to_string(max_frags_);
     m["node_pool"] = std::to_string(lists_->pool());
+    // Nodes (8-byte fragment + 4-byte next) plus the per-pixel heads (and BMA's counts).
+    m["node_pool_bytes"] = std::to_string(lists_->pool() * 12 + stats.depth.size() * 4 * (bma_ ? 2 : 1));
+    if (auto_) {
+      m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
+      m["bma_auto_source"] = auto_choice_.source;
+    }
     m["overflow_rerenders"] = std::to_string(overflow_rerenders_);
     size_t truncated = 0;
     for (unsigned d : stats.depth) truncated += d > max_frags_;
@@ -249,16 +288,8 @@ class OitCase final : public CaseInstance {
     return i;
   }
 
-  gl::Program build_resolve(unsigned max_frags) {
-    Defines d = {{"MAX_FRAGS", std::to_string(max_frags)}};
-    if (technique_.ends_with("-IS")) d.push_back({"SORT_IS", ""});
-    else if (technique_.ends_with("-IMS")) d.push_back({"SORT_IMS", ""});
-    else {
-      unsigned m = std::min<unsigned>(static_cast<unsigned>(block_), max_frags);
-      d.push_back({"SORT_RBS", ""});
-      d.push_back({"RBS_M", std::to_string(m)});
-      d.push_back({"MAX_K", std::to_string((max_frags + m - 1) / m)});
-    }
+  gl::Program build_resolve(ResolveSort sort, unsigned max_frags) {
+    Defines d = sort_defines(sort, max_frags, static_cast<unsigned>(block_));
     auto prog = ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}}, d);
     glProgramUniform3f(prog.get(), glGetUniformLocation(prog.get(), "background"), scene_.background.r,
                        scene_.background.g, scene_.background.b);
@@ -267,8 +298,50 @@ class OitCase final : public CaseInstance {
   }
 
   const gl::Program& interval_program(size_t i) {
-    if (!interval_programs_[i]) interval_programs_[i] = build_resolve(interval_tops_[i]);
+    if (!interval_programs_[i]) interval_programs_[i] = build_resolve(interval_sort(i), interval_tops_[i]);
     return *interval_programs_[i];
+  }
+
+  ResolveSort interval_sort(size_t i) const {
+    if (auto_) return i < auto_choice_.sort.size() && auto_choice_.sort[i] ? *auto_choice_.sort[i] : ResolveSort::IS;
+    return sort_of_technique(technique_);
+  }
+
+  // BMA-AUTO (oit/bma_auto.hpp): each used interval's sort, from the cache or timed here on the
+  // lists of the first capture under that interval's stencil mask. Runs inside prepare, so it is
+  // counted in compile_ms and never in a timed pass.
+  void calibrate_bma_auto() {
+    target_.bind();
+    std::vector<unsigned> pixels = count_intervals();
+    HostLists host = lists_->read_back();
+    ListStats stats = list_stats(host);
+    std::vector<double> ref;  // computed on the first calibrated candidate only
+    SortChoiceCache cache(bma_auto_cache_path());
+    constexpr int kReps = 2;
+    auto measure = [&](size_t i, ResolveSort sort) {
+      gl::Program prog = build_resolve(sort, interval_tops_[i]);
+      mask_intervals(pixels);
+      std::vector<double> ms;
+      for (int r = 0; r <= kReps; ++r) {  // r == 0: the warm-up that pays the JIT
+        auto start = std::chrono::steady_clock::now();
+        begin_resolve();
+        glEnable(GL_STENCIL_TEST);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
+        draw_resolve(prog);
+        glDisable(GL_STENCIL_TEST);
+        end_resolve();
+        glFinish();
+        if (r) ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      }
+      std::sort(ms.begin(), ms.end());
+      if (ref.empty()) ref = composite_reference(host, scene_.background);
+      unsigned lo = i == 0 ? 1 : interval_tops_[i] / 2 + 1;
+      unsigned hi = i + 1 == interval_tops_.size() ? max_frags_ : interval_tops_[i];
+      bool valid = interval_matches_reference(target_.read_rgba32f(), ref, stats, lo, hi, kTolerance);
+      return CandidateResult{ms[ms.size() / 2], valid};
+    };
+    auto_choice_ = choose_interval_sorts(interval_tops_, pixels, ctx_.gl(), static_cast<unsigned>(block_), cache, measure);
   }
 
   void begin_resolve() {
@@ -288,7 +361,7 @@ class OitCase final : public CaseInstance {
   int width_, height_;
   bool wrong_result_;
   std::string technique_;
-  bool bma_, native_;
+  bool bma_, native_, compute_, auto_;
   int block_;
   SceneDesc scene_;
   RenderTarget target_;
@@ -300,6 +373,8 @@ class OitCase final : public CaseInstance {
   gl::Buffer histogram_;
   std::vector<unsigned> interval_tops_, interval_pixels_;
   std::vector<std::optional<gl::Program>> interval_programs_;
+  std::unique_ptr<ComputeResolve> compute_resolve_;
+  BmaAutoChoice auto_choice_;
   unsigned max_frags_ = 0;
   int overflow_rerenders_ = 0, intervals_run_ = 0;
   std::vector<double> capture_ms_;
@@ -320,7 +395,9 @@ class OitExperiment final : public Experiment {
     ParamSpec view{"view", "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)",
                    {"fwd", "rev"}, {}, {}};
     ParamSpec technique{"technique", "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
-                                     "a stencil mask; IS insertion, IMS insertion+merge, RBS-L register block sort",
+                                     "a stencil mask; CS-* a compute pass; RBS-G blocks sorted in place in global memory; "
+                                     "IS insertion, IMS insertion+merge, RBS-L register block sort; BMA-AUTO the "
+                                     "per-interval sort calibrated on this driver (cached)",
                         kTechniques, {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"}, kTechniques};
     ParamSpec detail{"detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"},
                      {"full", "small"}};
@@ -330,11 +407,15 @@ class OitExperiment final : public Experiment {
                    {"0"}, {}, {}, ParamSpec::Kind::Integer, 0, 1e9};
     ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)", {"0"}, {}, {},
                         ParamSpec::Kind::Integer, 0, 4096};
-    return {scene, view, technique, detail, block, pool, max_frags};
+    ParamSpec cs_group{"cs_group", "CS-* work group in pixels (8-wide rows by default; PLATFORM.md: a stream-form "
+                                   "resolve was miscompiled with 4x4 groups on llvmpipe)",
+                       {"8x1"}, {}, {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}};
+    return {scene, view, technique, detail, block, pool, max_frags, cs_group};
   }
   std::vector<std::string> metric_columns() const override {
     return {"polygons",         "total_fragments", "peak_depth",     "mean_depth",    "fragments_per_s",
             "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
+            "node_pool_bytes",  "bma_auto_choice", "bma_auto_source",
             "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels"};
   }
   Resolution default_resolution() const override { return {512, 512}; }
