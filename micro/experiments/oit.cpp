@@ -62,6 +62,7 @@ class OitCase final : public CaseInstance {
         native_(technique_ == "CPU-NATIVE"),
         compute_(technique_.starts_with("CS-")),
         auto_(technique_ == "BMA-AUTO"),
+        use_auto_cache_(p.get("bma_auto_cache") == "on"),
         block_(static_cast<int>(p.get_int("block"))),
         scene_(load_scene(p.get("scene"))),
         target_(ctx.width(), ctx.height(), GL_RGBA32F, true) {
@@ -222,6 +223,7 @@ class OitCase final : public CaseInstance {
     if (auto_) {
       m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
       m["bma_auto_source"] = auto_choice_.source;
+      m["bma_auto_timings"] = auto_choice_.timings;
     }
     m["overflow_rerenders"] = std::to_string(overflow_rerenders_);
     size_t truncated = 0;
@@ -341,7 +343,8 @@ class OitCase final : public CaseInstance {
       bool valid = interval_matches_reference(target_.read_rgba32f(), ref, stats, lo, hi, kTolerance);
       return CandidateResult{ms[ms.size() / 2], valid};
     };
-    auto_choice_ = choose_interval_sorts(interval_tops_, pixels, ctx_.gl(), static_cast<unsigned>(block_), cache, measure);
+    auto_choice_ = choose_interval_sorts(interval_tops_, pixels, interval_orders(host, stats, interval_tops_), ctx_.gl(),
+                                         static_cast<unsigned>(block_), cache, use_auto_cache_, measure);
   }
 
   void begin_resolve() {
@@ -361,7 +364,7 @@ class OitCase final : public CaseInstance {
   int width_, height_;
   bool wrong_result_;
   std::string technique_;
-  bool bma_, native_, compute_, auto_;
+  bool bma_, native_, compute_, auto_, use_auto_cache_;
   int block_;
   SceneDesc scene_;
   RenderTarget target_;
@@ -410,12 +413,15 @@ class OitExperiment final : public Experiment {
     ParamSpec cs_group{"cs_group", "CS-* work group in pixels (8-wide rows by default; PLATFORM.md: a stream-form "
                                    "resolve was miscompiled with 4x4 groups on llvmpipe)",
                        {"8x1"}, {}, {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}};
-    return {scene, view, technique, detail, block, pool, max_frags, cs_group};
+    ParamSpec auto_cache{"bma_auto_cache", "BMA-AUTO: on reads and writes the per-driver choice cache "
+                                           "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
+                         {"on"}, {}, {"on", "off"}};
+    return {scene, view, technique, detail, block, pool, max_frags, cs_group, auto_cache};
   }
   std::vector<std::string> metric_columns() const override {
     return {"polygons",         "total_fragments", "peak_depth",     "mean_depth",    "fragments_per_s",
             "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
-            "node_pool_bytes",  "bma_auto_choice", "bma_auto_source",
+            "node_pool_bytes",  "bma_auto_choice", "bma_auto_source", "bma_auto_timings",
             "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels"};
   }
   Resolution default_resolution() const override { return {512, 512}; }

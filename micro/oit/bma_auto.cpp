@@ -30,9 +30,35 @@ SortChoiceCache::SortChoiceCache(std::string path) : path_(std::move(path)), ent
   }
 }
 
-std::string SortChoiceCache::key(const GlInfo& gl, unsigned interval_top, unsigned block) {
+std::string SortChoiceCache::key(const GlInfo& gl, unsigned interval_top, unsigned block, const std::string& order) {
   return gl.renderer + " | " + gl.version + " | interval " + std::to_string(interval_top) + " | block " +
-         std::to_string(block);
+         std::to_string(block) + " | " + order;
+}
+
+std::vector<std::string> interval_orders(const HostLists& lists, const ListStats& stats,
+                                         const std::vector<unsigned>& interval_tops) {
+  std::vector<size_t> in_order(interval_tops.size(), 0), pairs(interval_tops.size(), 0);
+  for (size_t p = 0; p < lists.heads.size() && p < stats.depth.size(); ++p) {
+    unsigned d = stats.depth[p];
+    if (d < 2) continue;
+    size_t i = 0;
+    while (i + 1 < interval_tops.size() && d > interval_tops[i]) ++i;
+    unsigned node = lists.heads[p];
+    for (unsigned k = 0; k + 1 < d && node < lists.nodes.size(); ++k) {
+      unsigned next = lists.next[node];
+      if (next >= lists.nodes.size()) break;
+      in_order[i] += lists.nodes[node].y >= lists.nodes[next].y;  // far-to-near: descending depth
+      ++pairs[i];
+      node = next;
+    }
+  }
+  std::vector<std::string> out(interval_tops.size(), "mixed");
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (!pairs[i]) continue;
+    double f = static_cast<double>(in_order[i]) / static_cast<double>(pairs[i]);
+    out[i] = f >= 0.9 ? "sorted" : f <= 0.1 ? "reverse" : "mixed";
+  }
+  return out;
 }
 
 std::optional<ResolveSort> SortChoiceCache::find(const std::string& key) const {
@@ -72,7 +98,8 @@ std::vector<ResolveSort> bma_auto_candidates(unsigned interval_top) {
 }
 
 BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, const std::vector<unsigned>& pixels,
-                                    const GlInfo& gl, unsigned block, SortChoiceCache& cache,
+                                    const std::vector<std::string>& orders, const GlInfo& gl, unsigned block,
+                                    SortChoiceCache& cache, bool use_cache,
                                     const std::function<CandidateResult(size_t, ResolveSort)>& measure) {
   BmaAutoChoice choice;
   choice.sort.resize(interval_tops.size());
@@ -80,8 +107,8 @@ BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, 
   std::ostringstream timings;
   for (size_t i = 0; i < interval_tops.size(); ++i) {
     if (i >= pixels.size() || !pixels[i]) continue;
-    std::string key = SortChoiceCache::key(gl, interval_tops[i], block);
-    if (auto hit = cache.find(key)) {
+    std::string key = SortChoiceCache::key(gl, interval_tops[i], block, i < orders.size() ? orders[i] : "mixed");
+    if (auto hit = use_cache ? cache.find(key) : std::nullopt) {
       choice.sort[i] = *hit;
       any_cached = true;
       continue;
@@ -90,7 +117,8 @@ BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, 
     std::map<std::string, double> ms;
     std::optional<ResolveSort> best;
     double best_ms = INFINITY;
-    timings << (timings.tellp() > 0 ? " " : "") << interval_tops[i] << ":";
+    timings << (timings.tellp() > 0 ? " " : "") << interval_tops[i] << "/" << (i < orders.size() ? orders[i] : "mixed")
+            << ":";
     bool first = true;
     for (ResolveSort s : bma_auto_candidates(interval_tops[i])) {
       CandidateResult r = measure(i, s);
@@ -110,7 +138,7 @@ BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, 
       dirty = true;
     }
   }
-  if (dirty) cache.save();
+  if (dirty && use_cache) cache.save();
   choice.source = any_cached && any_calibrated ? "mixed" : any_cached ? "cached" : "calibrated";
   choice.timings = timings.str();
   return choice;

@@ -4,9 +4,11 @@
 // intervals above 32; RBS-L) resolves each used interval's pixels under its stencil mask: one
 // warm-up draw (the JIT) and `reps` timed draws (CPU clock around glFinish, the only clock that is
 // right on llvmpipe); the fastest candidate whose pixels match the CPU reference wins. Choices are
-// cached in a small JSON file keyed on GL_RENDERER, GL_VERSION, the interval and the register
-// block size, so the calibration is paid once per driver (it is counted in compile_ms, never in
-// the timed passes).
+// cached in a small JSON file keyed on GL_RENDERER, GL_VERSION, the interval, the register
+// block size and the order the interval's lists arrive in (sorted, reverse or mixed: insertion
+// sort's cost depends on it more than on anything else, so a choice made on sorted lists must not
+// be reused on reverse-sorted ones), so the calibration is paid once per driver and input class
+// (it is counted in compile_ms, never in the timed passes).
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <map>
@@ -26,7 +28,7 @@ std::string bma_auto_cache_path();
 class SortChoiceCache {
  public:
   explicit SortChoiceCache(std::string path);  // a missing or unreadable file is an empty cache
-  static std::string key(const GlInfo& gl, unsigned interval_top, unsigned block);
+  static std::string key(const GlInfo& gl, unsigned interval_top, unsigned block, const std::string& order);
   std::optional<ResolveSort> find(const std::string& key) const;
   void put(const std::string& key, ResolveSort sort, const std::map<std::string, double>& timings_ms);
   void save() const;  // creates the folder; a failure to write is ignored (the cache is an optimisation)
@@ -47,13 +49,20 @@ std::vector<ResolveSort> bma_auto_candidates(unsigned interval_top);
 struct BmaAutoChoice {
   std::vector<std::optional<ResolveSort>> sort;  // per interval; empty where the interval has no pixels
   std::string source;                            // calibrated | cached | mixed
-  std::string timings;                           // "16:IS=3.1,RBS-L=2.2 ..." for the calibrated ones
+  std::string timings;  // "16/reverse:IS=3.1,RBS-L=2.2 ..." (median ms) for the calibrated intervals
 };
 
+// The order each interval's lists arrive in: "sorted" when at least 90% of adjacent fragment pairs
+// are already far-to-near (what the resolves want), "reverse" when at most 10% are, else "mixed".
+std::vector<std::string> interval_orders(const HostLists& lists, const ListStats& stats,
+                                         const std::vector<unsigned>& interval_tops);
+
 // For every interval i with pixels[i] > 0: the cached choice, else the fastest valid candidate
-// by `measure(i, sort)` (which runs the warm-up and timed draws). Calibrated choices go into `cache`.
+// by `measure(i, sort)` (which runs the warm-up and timed draws). Calibrated choices go into
+// `cache` (unless `use_cache` is false: then every interval is calibrated and nothing is stored).
 BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, const std::vector<unsigned>& pixels,
-                                    const GlInfo& gl, unsigned block, SortChoiceCache& cache,
+                                    const std::vector<std::string>& orders, const GlInfo& gl, unsigned block,
+                                    SortChoiceCache& cache, bool use_cache,
                                     const std::function<CandidateResult(size_t, ResolveSort)>& measure);
 
 // "8:IS 16:IS 32:RBS-L" for the metric column.

@@ -4,6 +4,7 @@
 // when their output is perturbed.
 #include <cstdlib>
 #include <fstream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -93,6 +94,31 @@ TEST_F(OitCompute, BmaAutoFollowsAForcedCacheEntry) {
   EXPECT_EQ(v.metrics.at("bma_auto_choice"), "32:RBS-L");  // 24 planes: one interval, 17-32
 }
 
+TEST_F(OitCompute, BmaAutoKeysTheCacheOnTheListOrder) {
+  // Sorted lists (fwd) and reverse-sorted ones (rev) are different inputs for insertion sort: the
+  // choice made on one must not be reused on the other.
+  auto fwd = run_case("oit", small("planes", "fwd", "BMA-AUTO"));
+  ASSERT_TRUE(fwd.valid) << fwd.reason;
+  auto rev = run_case("oit", small("planes", "rev", "BMA-AUTO"));
+  ASSERT_TRUE(rev.valid) << rev.reason;
+  EXPECT_EQ(rev.metrics.at("bma_auto_source"), "calibrated");
+  EXPECT_NE(fwd.metrics.at("bma_auto_timings").find("32/sorted:"), std::string::npos) << fwd.metrics.at("bma_auto_timings");
+  EXPECT_NE(rev.metrics.at("bma_auto_timings").find("32/reverse:"), std::string::npos) << rev.metrics.at("bma_auto_timings");
+  auto cache = nlohmann::json::parse(std::ifstream(cache_ / "oitbench" / "bma_auto.json"));
+  EXPECT_EQ(cache.size(), 2u);
+}
+
+TEST_F(OitCompute, BmaAutoWithoutTheCacheCalibratesEveryCase) {
+  auto p = small("planes", "rev", "BMA-AUTO");
+  p["bma_auto_cache"] = "off";
+  for (int i = 0; i < 2; ++i) {
+    auto v = run_case("oit", p);
+    EXPECT_TRUE(v.valid) << v.reason;
+    EXPECT_EQ(v.metrics.at("bma_auto_source"), "calibrated");
+  }
+  EXPECT_FALSE(std::filesystem::exists(cache_ / "oitbench" / "bma_auto.json"));
+}
+
 TEST_F(OitCompute, ValidatorCatchesAWrongResult) {
   for (const char* technique : {"CS-IS", "CS-RBS-L", "RBS-G", "BMA-AUTO"}) {
     auto p = small("planes", "fwd", technique);
@@ -108,6 +134,27 @@ TEST_F(OitCompute, MemoryIsReported) {
   ASSERT_TRUE(v.valid) << v.reason;
   // 24 x 64 x 64 fragments in 12-byte nodes at least, plus 4-byte heads.
   EXPECT_GE(std::stoll(v.metrics.at("node_pool_bytes")), 24LL * 64 * 64 * 12 + 64 * 64 * 4);
+}
+
+TEST_F(OitCompute, QuickKnowlesPresetsRunEndToEnd) {
+  // Every row of the quick paper grids is a valid result or says why not.
+  for (const char* preset : {"knowles2014-quick", "knowles2013-quick"}) {
+    auto out = temp_dir("oit_presets") / (std::string(preset) + ".csv");
+    std::filesystem::remove(out);
+    auto r = run_oitbench({"run", "--preset", preset, "--out", out.string()});
+    ASSERT_EQ(r.exit_code, 0) << preset << ": " << r.err;
+    auto rows = read_csv_rows(out);
+    EXPECT_GE(rows.size(), 12u) << preset;
+    std::set<std::string> techniques;
+    for (const auto& row : rows) {
+      techniques.insert(row.at("technique"));
+      bool valid = row.at("status") == "ok" && row.at("valid") == "1";
+      EXPECT_TRUE(valid || !row.at("reason").empty())
+          << preset << " " << row.at("scene") << " " << row.at("technique") << ": " << row.at("status");
+    }
+    EXPECT_EQ(techniques.count("BMA-AUTO"), 1u) << preset;
+    if (std::string(preset) == "knowles2014-quick") EXPECT_EQ(techniques.size(), 12u);
+  }
 }
 
 }  // namespace oitbench::test
