@@ -56,7 +56,7 @@ std::vector<std::string> interval_orders(const HostLists& lists, const ListStats
   for (size_t i = 0; i < out.size(); ++i) {
     if (!pairs[i]) continue;
     double f = static_cast<double>(in_order[i]) / static_cast<double>(pairs[i]);
-    out[i] = f >= 0.9 ? "sorted" : f <= 0.1 ? "reverse" : "mixed";
+    out[i] = f >= 0.9 ? "sorted" : f >= 0.6 ? "mostly-sorted" : f > 0.4 ? "mixed" : f > 0.1 ? "mostly-reverse" : "reverse";
   }
   return out;
 }

@@ -5,7 +5,7 @@
 // warm-up draw (the JIT) and `reps` timed draws (CPU clock around glFinish, the only clock that is
 // right on llvmpipe); the fastest candidate whose pixels match the CPU reference wins. Choices are
 // cached in a small JSON file keyed on GL_RENDERER, GL_VERSION, the interval, the register
-// block size and the order the interval's lists arrive in (sorted, reverse or mixed: insertion
+// block size and the order the interval's lists arrive in (sorted ... reverse, 5 classes: insertion
 // sort's cost depends on it more than on anything else, so a choice made on sorted lists must not
 // be reused on reverse-sorted ones), so the calibration is paid once per driver and input class
 // (it is counted in compile_ms, never in the timed passes).
@@ -52,8 +52,9 @@ struct BmaAutoChoice {
   std::string timings;  // "16/reverse:IS=3.1,RBS-L=2.2 ..." (median ms) for the calibrated intervals
 };
 
-// The order each interval's lists arrive in: "sorted" when at least 90% of adjacent fragment pairs
-// are already far-to-near (what the resolves want), "reverse" when at most 10% are, else "mixed".
+// The order each interval's lists arrive in, from the fraction f of adjacent fragment pairs already
+// far-to-near (what the resolves want): sorted (f >= 0.9), mostly-sorted (>= 0.6), mixed,
+// mostly-reverse (<= 0.4), reverse (<= 0.1).
 std::vector<std::string> interval_orders(const HostLists& lists, const ListStats& stats,
                                          const std::vector<unsigned>& interval_tops);
 
