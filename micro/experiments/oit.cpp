@@ -268,6 +268,12 @@ class OitCase final : public CaseInstance {
     if (err.bad_pixels)
       problems.push_back(std::to_string(err.bad_pixels) + " pixel(s) differ from the CPU reference by more than 2/255; first: " +
                          err.first_bad);
+    // llvmpipe ends a shader invocation's loops after 65535 iterations in total (gallivm's
+    // LP_MAX_TGSI_LOOP_ITERATIONS): deep reverse insertion sorts and wide k-way merges pass it.
+    double loop_steps = std::max(0.5 * stats.peak_depth * stats.peak_depth, static_cast<double>(stats.peak_depth) * max_frags_ / std::max(1, block_));
+    if (!problems.empty() && !native_ && ctx_.gl().is_software_renderer() && loop_steps > 65535)
+      problems.push_back("likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
+                         "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" + fmt(loop_steps) + " per pixel");
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;

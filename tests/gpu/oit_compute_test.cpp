@@ -129,6 +129,17 @@ TEST_F(OitCompute, ValidatorCatchesAWrongResult) {
   }
 }
 
+TEST_F(OitCompute, LlvmpipeLoopBudgetIsCaughtAndNamed) {
+  // 1100 reverse-sorted fragments per pixel: RBS's merge (1100 x 64 steps) passes the 65535 loop
+  // iterations llvmpipe allows an invocation, its loops stop early and every pixel is wrong. The
+  // validator must say so (on a real GPU the same case is simply valid).
+  if (!gl().is_software_renderer()) GTEST_SKIP() << "the loop budget is llvmpipe's";
+  auto v = run_case("oit", {{"scene", "planes-deep"}, {"view", "rev"}, {"technique", "BASE-RBS-L"}}, {8, 8});
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.metrics.at("peak_depth"), "1100");
+  EXPECT_NE(v.reason.find("65535"), std::string::npos) << v.reason;
+}
+
 TEST_F(OitCompute, MemoryIsReported) {
   auto v = run_case("oit", small("planes", "fwd", "CS-IS"));
   ASSERT_TRUE(v.valid) << v.reason;
