@@ -15,9 +15,12 @@
 #include "core/registry.hpp"
 #include "core/render_target.hpp"
 #include "oit/approx.hpp"
+#include "oit/bma_auto.hpp"
+#include "oit/compute_resolve.hpp"
 #include "oit/fragment_lists.hpp"
 #include "oit/gpu_mesh.hpp"
 #include "oit/reference.hpp"
+#include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
 
 namespace oitbench {
@@ -31,8 +34,8 @@ using namespace oit;
 constexpr double kTolerance = 2.0 / 255.0;
 constexpr int kFirstInterval = 8;  // BMA intervals: 1-8, 9-16, 17-32, ... (Knowles 2014, section 4)
 
-const std::vector<std::string> kExact = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS",
-                                         "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE"};
+const std::vector<std::string> kExact = {"BASE-IS",   "BASE-IMS", "BASE-RBS-L", "BMA-IS", "BMA-IMS",  "BMA-RBS-L",
+                                         "CPU-NATIVE", "CS-IS",    "CS-IMS",     "CS-RBS-L", "RBS-G", "BMA-AUTO"};
 std::vector<std::string> all_techniques() {  // exact, then approximate (micro/oit/approx.hpp)
   std::vector<std::string> t = kExact;
   for (const auto& a : approx_technique_names()) t.push_back(a);
@@ -62,6 +65,9 @@ class OitCase final : public CaseInstance {
         technique_(p.get("technique")),
         bma_(technique_.starts_with("BMA-")),
         native_(technique_ == "CPU-NATIVE"),
+        compute_(technique_.starts_with("CS-")),
+        auto_(technique_ == "BMA-AUTO"),
+        use_auto_cache_(p.get("bma_auto_cache") == "on"),
         block_(static_cast<int>(p.get_int("block"))),
         scene_(load_scene(p.get("scene"))),
         target_(ctx.width(), ctx.height(), GL_RGBA32F, true) {
@@ -87,6 +93,13 @@ class OitCase final : public CaseInstance {
     long long forced = p.get_int("max_frags");
     max_frags_ = forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(stats.peak_depth));
     if (native_) return;
+    if (compute_) {
+      auto [gx, gy] = parse_group(p.get("cs_group"));
+      compute_resolve_ = std::make_unique<ComputeResolve>(
+          ctx, sort_defines(sort_of_technique(technique_), max_frags_, static_cast<unsigned>(block_)),
+          scene_.background, gx, gy);
+      return;
+    }
     if (bma_) {
       count_ = ctx.build({{GL_COMPUTE_SHADER, "oit/bma_count.comp"}}, {});
       mask_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/bma_mask.frag"}}, {});
@@ -98,10 +111,11 @@ class OitCase final : public CaseInstance {
       for (unsigned d : stats.depth)
         if (d > 0) used[interval_of(d)] = true;
       interval_programs_.resize(interval_tops_.size());
+      if (auto_) calibrate_bma_auto();
       for (size_t i = 0; i < used.size(); ++i)
         if (used[i]) interval_program(i);
     } else {
-      base_ = build_resolve(max_frags_);
+      base_ = build_resolve(sort_of_technique(technique_), max_frags_);
     }
   }
 
@@ -122,6 +136,11 @@ class OitCase final : public CaseInstance {
       resolve_native(host_, scene_.background, 0, wrong_result_, native_out_);
       return;
     }
+    if (compute_) {
+      auto t = timer.pass("resolve");
+      compute_resolve_->run(*lists_, target_);
+      return;
+    }
     if (!bma_) {
       auto t = timer.pass("resolve");
       begin_resolve();
@@ -129,22 +148,50 @@ class OitCase final : public CaseInstance {
       end_resolve();
       return;
     }
-    std::vector<unsigned> hist(32, 0);
+    std::vector<unsigned> pixels;
     {
       auto t = timer.pass("count");
-      glNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
-      lists_->bind();
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, histogram_.get());
-      glUseProgram(count_.get());
-      glDispatchCompute((width_ + 7) / 8, (height_ + 7) / 8, 1);
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      glGetNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
+      pixels = count_intervals();
     }
+    {
+      auto t = timer.pass("mask");
+      mask_intervals(pixels);
+    }
+    auto t = timer.pass("resolve");
+    begin_resolve();
+    glEnable(GL_STENCIL_TEST);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    intervals_run_ = 0;
+    for (size_t i = 0; i < interval_tops_.size(); ++i) {
+      if (!pixels[i]) continue;  // no pixels: the interval's program never runs
+      glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
+      draw_resolve(interval_program(i));
+      ++intervals_run_;
+    }
+    glDisable(GL_STENCIL_TEST);
+    end_resolve();
+    interval_pixels_ = pixels;
+  }
+
+  // BMA's count pass: pixels per depth interval (pixels deeper than MAX_FRAGS in the last one).
+  std::vector<unsigned> count_intervals() {
+    std::vector<unsigned> hist(32, 0);
+    glNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
+    lists_->bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, histogram_.get());
+    glUseProgram(count_.get());
+    glDispatchCompute((width_ + 7) / 8, (height_ + 7) / 8, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
     // Pixels deeper than MAX_FRAGS belong to the last interval (truncated there, and counted).
     std::vector<unsigned> pixels(interval_tops_.size(), 0);
     for (size_t i = 0; i < hist.size(); ++i) pixels[std::min(i, pixels.size() - 1)] += hist[i];
+    return pixels;
+  }
+
+  // BMA's mask pass: stencil value i + 1 on the pixels of interval i.
+  void mask_intervals(const std::vector<unsigned>& pixels) {
     {
-      auto t = timer.pass("mask");
       glClearNamedFramebufferiv(target_.framebuffer(), GL_STENCIL, 0, std::array<GLint, 1>{0}.data());
       glEnable(GL_STENCIL_TEST);
       glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -163,20 +210,6 @@ class OitCase final : public CaseInstance {
       glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       glDisable(GL_STENCIL_TEST);
     }
-    auto t = timer.pass("resolve");
-    begin_resolve();
-    glEnable(GL_STENCIL_TEST);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    intervals_run_ = 0;
-    for (size_t i = 0; i < interval_tops_.size(); ++i) {
-      if (!pixels[i]) continue;  // no pixels: the interval's program never runs
-      glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
-      draw_resolve(interval_program(i));
-      ++intervals_run_;
-    }
-    glDisable(GL_STENCIL_TEST);
-    end_resolve();
-    interval_pixels_ = pixels;
   }
 
   Validation validate() override {
@@ -190,6 +223,13 @@ class OitCase final : public CaseInstance {
     m["mean_depth"] = fmt(stats.mean_depth);
     m["max_frags"] = std::to_string(max_frags_);
     m["node_pool"] = std::to_string(lists_->pool());
+    // Nodes (8-byte fragment + 4-byte next) plus the per-pixel heads (and BMA's counts).
+    m["node_pool_bytes"] = std::to_string(lists_->pool() * 12 + stats.depth.size() * 4 * (bma_ ? 2 : 1));
+    if (auto_) {
+      m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
+      m["bma_auto_source"] = auto_choice_.source;
+      m["bma_auto_timings"] = auto_choice_.timings;
+    }
     m["overflow_rerenders"] = std::to_string(overflow_rerenders_);
     size_t truncated = 0;
     for (unsigned d : stats.depth) truncated += d > max_frags_;
@@ -233,6 +273,12 @@ class OitCase final : public CaseInstance {
     if (err.bad_pixels)
       problems.push_back(std::to_string(err.bad_pixels) + " pixel(s) differ from the CPU reference by more than 2/255; first: " +
                          err.first_bad);
+    // llvmpipe ends a shader invocation's loops after 65535 iterations in total (gallivm's
+    // LP_MAX_TGSI_LOOP_ITERATIONS): deep reverse insertion sorts and wide k-way merges pass it.
+    double loop_steps = std::max(0.5 * stats.peak_depth * stats.peak_depth, static_cast<double>(stats.peak_depth) * max_frags_ / std::max(1, block_));
+    if (!problems.empty() && !native_ && ctx_.gl().is_software_renderer() && loop_steps > 65535)
+      problems.push_back("likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
+                         "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" + fmt(loop_steps) + " per pixel");
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;
@@ -255,16 +301,8 @@ class OitCase final : public CaseInstance {
     return i;
   }
 
-  gl::Program build_resolve(unsigned max_frags) {
-    Defines d = {{"MAX_FRAGS", std::to_string(max_frags)}};
-    if (technique_.ends_with("-IS")) d.push_back({"SORT_IS", ""});
-    else if (technique_.ends_with("-IMS")) d.push_back({"SORT_IMS", ""});
-    else {
-      unsigned m = std::min<unsigned>(static_cast<unsigned>(block_), max_frags);
-      d.push_back({"SORT_RBS", ""});
-      d.push_back({"RBS_M", std::to_string(m)});
-      d.push_back({"MAX_K", std::to_string((max_frags + m - 1) / m)});
-    }
+  gl::Program build_resolve(ResolveSort sort, unsigned max_frags) {
+    Defines d = sort_defines(sort, max_frags, static_cast<unsigned>(block_));
     auto prog = ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}}, d);
     glProgramUniform3f(prog.get(), glGetUniformLocation(prog.get(), "background"), scene_.background.r,
                        scene_.background.g, scene_.background.b);
@@ -273,8 +311,51 @@ class OitCase final : public CaseInstance {
   }
 
   const gl::Program& interval_program(size_t i) {
-    if (!interval_programs_[i]) interval_programs_[i] = build_resolve(interval_tops_[i]);
+    if (!interval_programs_[i]) interval_programs_[i] = build_resolve(interval_sort(i), interval_tops_[i]);
     return *interval_programs_[i];
+  }
+
+  ResolveSort interval_sort(size_t i) const {
+    if (auto_) return i < auto_choice_.sort.size() && auto_choice_.sort[i] ? *auto_choice_.sort[i] : ResolveSort::IS;
+    return sort_of_technique(technique_);
+  }
+
+  // BMA-AUTO (oit/bma_auto.hpp): each used interval's sort, from the cache or timed here on the
+  // lists of the first capture under that interval's stencil mask. Runs inside prepare, so it is
+  // counted in compile_ms and never in a timed pass.
+  void calibrate_bma_auto() {
+    target_.bind();
+    std::vector<unsigned> pixels = count_intervals();
+    HostLists host = lists_->read_back();
+    ListStats stats = list_stats(host);
+    std::vector<double> ref;  // computed on the first calibrated candidate only
+    SortChoiceCache cache(bma_auto_cache_path());
+    constexpr int kReps = 2;
+    auto measure = [&](size_t i, ResolveSort sort) {
+      gl::Program prog = build_resolve(sort, interval_tops_[i]);
+      mask_intervals(pixels);
+      std::vector<double> ms;
+      for (int r = 0; r <= kReps; ++r) {  // r == 0: the warm-up that pays the JIT
+        auto start = std::chrono::steady_clock::now();
+        begin_resolve();
+        glEnable(GL_STENCIL_TEST);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
+        draw_resolve(prog);
+        glDisable(GL_STENCIL_TEST);
+        end_resolve();
+        glFinish();
+        if (r) ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      }
+      std::sort(ms.begin(), ms.end());
+      if (ref.empty()) ref = composite_reference(host, scene_.background);
+      unsigned lo = i == 0 ? 1 : interval_tops_[i] / 2 + 1;
+      unsigned hi = i + 1 == interval_tops_.size() ? max_frags_ : interval_tops_[i];
+      bool valid = interval_matches_reference(target_.read_rgba32f(), ref, stats, lo, hi, kTolerance);
+      return CandidateResult{ms[ms.size() / 2], valid};
+    };
+    auto_choice_ = choose_interval_sorts(interval_tops_, pixels, interval_orders(host, stats, interval_tops_), ctx_.gl(),
+                                         static_cast<unsigned>(block_), cache, use_auto_cache_, measure);
   }
 
   void begin_resolve() {
@@ -294,7 +375,7 @@ class OitCase final : public CaseInstance {
   int width_, height_;
   bool wrong_result_;
   std::string technique_;
-  bool bma_, native_;
+  bool bma_, native_, compute_, auto_, use_auto_cache_;
   int block_;
   SceneDesc scene_;
   RenderTarget target_;
@@ -306,6 +387,8 @@ class OitCase final : public CaseInstance {
   gl::Buffer histogram_;
   std::vector<unsigned> interval_tops_, interval_pixels_;
   std::vector<std::optional<gl::Program>> interval_programs_;
+  std::unique_ptr<ComputeResolve> compute_resolve_;
+  BmaAutoChoice auto_choice_;
   unsigned max_frags_ = 0;
   int overflow_rerenders_ = 0, intervals_run_ = 0;
   std::vector<double> capture_ms_;
@@ -328,7 +411,9 @@ class OitExperiment final : public Experiment {
     ParamSpec view{"view", "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)",
                    {"fwd", "rev"}, {}, {}};
     ParamSpec technique{"technique", "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
-                                     "a stencil mask; IS insertion, IMS insertion+merge, RBS-L register block sort",
+                                      "a stencil mask; CS-* a compute pass; RBS-G blocks sorted in place in global memory; "
+                                      "IS insertion, IMS insertion+merge, RBS-L register block sort; BMA-AUTO the "
+                                      "per-interval sort calibrated on this driver (cached); MLAB..unsorted: approximate",
                         kExact, {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"}, all_techniques()};
     ParamSpec detail{"detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"},
                      {"full", "small"}};
@@ -338,13 +423,20 @@ class OitExperiment final : public Experiment {
                    {"0"}, {}, {}, ParamSpec::Kind::Integer, 0, 1e9};
     ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)", {"0"}, {}, {},
                         ParamSpec::Kind::Integer, 0, 4096};
-    std::vector<ParamSpec> ps = {scene, view, technique, detail, block, pool, max_frags};
+    ParamSpec cs_group{"cs_group", "CS-* work group in pixels (8-wide rows by default; PLATFORM.md: a stream-form "
+                                   "resolve was miscompiled with 4x4 groups on llvmpipe)",
+                       {"8x1"}, {}, {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}};
+    ParamSpec auto_cache{"bma_auto_cache", "BMA-AUTO: on reads and writes the per-driver choice cache "
+                                           "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
+                         {"on"}, {}, {"on", "off"}};
+    std::vector<ParamSpec> ps = {scene, view, technique, detail, block, pool, max_frags, cs_group, auto_cache};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     return ps;
   }
   std::vector<std::string> metric_columns() const override {
     return {"polygons",         "total_fragments", "peak_depth",     "mean_depth",    "fragments_per_s",
             "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
+            "node_pool_bytes",  "bma_auto_choice", "bma_auto_source", "bma_auto_timings",
             "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels",
             // approximate techniques (micro/oit/approx.cpp)
             "psnr", "frac_pixels_off", "model_rmse", "model_max_diff", "nonfinite", "capped_updates", "flicker",

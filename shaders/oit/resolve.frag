@@ -1,10 +1,7 @@
-// The exact-OIT resolve, written once against the storage API: load the pixel's list, sort it
-// far-to-near with the sort the variant names, blend back to front with "over". Drawn as a
-// full-screen triangle with additive blending onto a cleared target: rgb is the composited colour,
-// alpha counts how often the pixel was resolved (BMA must resolve each covered pixel exactly once).
-//   SORT_IS:  insertion sort in a local array of MAX_FRAGS      (BASE-IS, BMA-IS)
-//   SORT_IMS: insertion up to 32 fragments, merge sort above     (BASE-IMS, BMA-IMS)
-//   SORT_RBS: register-based block sort, blocks of RBS_M, MAX_K blocks (BASE-RBS-L, BMA-RBS-L)
+// The exact-OIT resolve as a fragment shader, written once against the storage API (the sorts are
+// in resolve_pixel.glsl). Drawn as a full-screen triangle with additive blending onto a cleared
+// target: rgb is the composited colour, alpha counts how often the pixel was resolved (BMA must
+// resolve each covered pixel exactly once).
 #include "../common/oitbench.glsl"
 #include "storage/linked_list.glsl"
 
@@ -17,37 +14,7 @@ uniform vec3 background;
 uniform int zero;  // always 0 (fault hooks)
 layout(location = 0) out vec4 fragColour;
 
-vec3 blend_over(vec3 c, uvec2 frag) {
-  vec4 k = unpackUnorm4x8(frag.x);
-  return mix(c, k.rgb, k.a);
-}
-
-#if defined(SORT_RBS)
-#include "sorts/register_block.glsl"
-#elif defined(SORT_IS) || defined(SORT_IMS)
-uvec2 frags[MAX_FRAGS];
-#include "sorts/insertion.glsl"
-#if defined(SORT_IMS) && MAX_FRAGS > 32
-#include "sorts/merge.glsl"
-#endif
-vec3 resolve_pixel(uint node) {
-  int n = 0;
-  while (FRAG_VALID(node) && n < MAX_FRAGS) {  // deeper pixels are truncated (counted on the host)
-    frags[n++] = FRAG_LOAD(node);
-    node = FRAG_NEXT(node);
-  }
-#if defined(SORT_IMS) && MAX_FRAGS > 32
-  if (n > 32) sort_merge(n);
-  else
-#endif
-  sort_insertion(n);
-  vec3 c = background;
-  for (int i = 0; i < n; ++i) c = blend_over(c, frags[i]);
-  return c;
-}
-#else
-#error "define SORT_IS, SORT_IMS or SORT_RBS"
-#endif
+#include "resolve_pixel.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);

@@ -4,6 +4,7 @@
 //   FRAG_VALID(node)   false past the end of the list
 //   FRAG_NEXT(node)    the node after `node`
 //   FRAG_LOAD(node)    the fragment: uvec2(packUnorm4x8(RGBA), floatBitsToUint(depth))
+//   FRAG_STORE(node, frag)  overwrites a node's fragment in place (RBS-G's sorted blocks)
 //   store_fragment(p, rgba, depth)   (capture only, STORAGE_CAPTURE)
 // Depths are gl_FragCoord.z >= 0, so comparing their bits as uints orders them like the floats.
 #ifndef OIT_STORAGE_LINKED_LIST
@@ -25,6 +26,7 @@ layout(binding = 3, r32ui) uniform uimage2D fragCounts;
 // (as the CPU reference does), so the result never depends on the list order, which on a GPU
 // changes from frame to frame.
 #define FRAG_FARTHER(a, b) ((a).y > (b).y || ((a).y == (b).y && (a).x > (b).x))
+#define FRAG_STORE(node, frag) imageStore(nodeData, int(node), uvec4((frag), 0u, 0u))
 
 #ifdef STORAGE_CAPTURE
 layout(binding = 0, offset = 0) uniform atomic_uint fragCounter;

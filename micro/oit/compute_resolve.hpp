@@ -1,0 +1,34 @@
+#pragma once
+// The exact-OIT resolve as a compute pass (CS-IS, CS-IMS, CS-RBS-L: the GLSL-compute stand-in for
+// Knowles 2014's CUDA rows): shaders/oit/resolve.comp, one invocation per pixel in groups of
+// group_x x group_y, storing the composited colour straight into the target's colour texture in
+// the fragment-shader resolve's convention (rgb over the background, alpha 1 where resolved).
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "core/registry.hpp"
+#include "core/render_target.hpp"
+#include "oit/fragment_lists.hpp"
+
+namespace oitbench::oit {
+
+// Image unit of the resolved colour (units 0-3 are the lists', see fragment_lists.hpp).
+inline constexpr GLuint kResolvedUnit = 4;
+
+class ComputeResolve {
+ public:
+  ComputeResolve(const CaseContext& ctx, Defines sort_defines, glm::vec3 background, int group_x, int group_y);
+  // Clears `target`'s colour, resolves every pixel of `lists` into it and waits for nothing: the
+  // caller's glFinish or read-back does (the barrier makes the stores visible to both).
+  void run(const FragmentLists& lists, const RenderTarget& target) const;
+
+ private:
+  gl::Program program_;
+  int group_x_, group_y_;
+};
+
+// "8x1" -> {8, 1}; throws std::invalid_argument on anything else.
+std::pair<int, int> parse_group(const std::string& text);
+
+}  // namespace oitbench::oit

@@ -1,0 +1,47 @@
+#include "oit/resolve_sort.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace oitbench::oit {
+
+ResolveSort sort_of_technique(const std::string& technique) {
+  if (technique == "RBS-G" || technique.ends_with("-RBS-G")) return ResolveSort::RBS_G;
+  if (technique.ends_with("-RBS-L")) return ResolveSort::RBS_L;
+  if (technique.ends_with("-IMS")) return ResolveSort::IMS;
+  if (technique.ends_with("-IS")) return ResolveSort::IS;
+  throw std::invalid_argument("technique '" + technique + "' names no resolve sort (IS, IMS, RBS-L, RBS-G)");
+}
+
+std::string sort_label(ResolveSort sort) {
+  switch (sort) {
+    case ResolveSort::IS: return "IS";
+    case ResolveSort::IMS: return "IMS";
+    case ResolveSort::RBS_L: return "RBS-L";
+    case ResolveSort::RBS_G: return "RBS-G";
+  }
+  return "?";
+}
+
+ResolveSort parse_sort_label(const std::string& label) {
+  for (auto s : {ResolveSort::IS, ResolveSort::IMS, ResolveSort::RBS_L, ResolveSort::RBS_G})
+    if (sort_label(s) == label) return s;
+  throw std::invalid_argument("unknown resolve sort '" + label + "' (IS, IMS, RBS-L, RBS-G)");
+}
+
+Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block) {
+  Defines d = {{"MAX_FRAGS", std::to_string(max_frags)}};
+  if (sort == ResolveSort::IS) {
+    d.push_back({"SORT_IS", ""});
+  } else if (sort == ResolveSort::IMS) {
+    d.push_back({"SORT_IMS", ""});
+  } else {
+    unsigned m = std::min(block, max_frags);
+    d.push_back({sort == ResolveSort::RBS_L ? "SORT_RBS" : "SORT_RBS_G", ""});
+    d.push_back({"RBS_M", std::to_string(m)});
+    d.push_back({"MAX_K", std::to_string((max_frags + m - 1) / m)});
+  }
+  return d;
+}
+
+}  // namespace oitbench::oit

@@ -1,0 +1,20 @@
+#pragma once
+// Which sort an exact-OIT resolve runs (shaders/oit/resolve_pixel.glsl), from the technique's
+// suffix (BASE-IS, CS-RBS-L, RBS-G, ...), and the defines that select and size it.
+#include <string>
+
+#include "core/shader.hpp"
+
+namespace oitbench::oit {
+
+enum class ResolveSort { IS, IMS, RBS_L, RBS_G };
+
+// "BASE-IMS" -> IMS, "CS-RBS-L" -> RBS_L, "RBS-G" -> RBS_G; throws std::invalid_argument otherwise.
+ResolveSort sort_of_technique(const std::string& technique);
+std::string sort_label(ResolveSort sort);         // "IS", "IMS", "RBS-L", "RBS-G"
+ResolveSort parse_sort_label(const std::string& label);  // the inverse; throws std::invalid_argument
+// MAX_FRAGS plus SORT_IS | SORT_IMS | SORT_RBS (RBS_M, MAX_K) | SORT_RBS_G (RBS_M, MAX_K); the
+// register block is min(block, max_frags).
+Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block);
+
+}  // namespace oitbench::oit
