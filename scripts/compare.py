@@ -19,6 +19,7 @@ import csv
 import math
 import os
 import random
+import signal
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -147,13 +148,35 @@ class Comparison:
             self.verdict = "within noise (repetitions overlap)"
 
 
-def describe_key(key, params):
+def describe_key(key, params, constant=()):
+    """'dynamic size=33 pass=resolve 800x600', leaving out what every case of the experiment shares."""
     exp, variant, pas, w, h = key[:5]
-    parts = [variant] + [f"{p}={v}" for p, v in zip(params, key[5:]) if v != "" and p not in ("fault", "seed")
-                         or (p == "fault" and v not in ("", "none"))]
+    parts = [variant] if "variant" not in constant else []
+    for p, v in zip(params, key[5:]):
+        if v == "" or p in constant or p == "seed" or (p == "fault" and v == "none"):
+            continue
+        parts.append(f"{p}={v}")
     if pas != "total":
         parts.append(f"pass={pas}")
-    parts.append(f"{w}x{h}")
+    if "resolution" not in constant:
+        parts.append(f"{w}x{h}")
+    return " ".join(parts) or variant
+
+
+def constant_fields(keys, params):
+    """Names of the key fields that are the same in every one of `keys`: said once, not per row."""
+    names = ["experiment", "variant", "pass", "resolution"] + list(params)
+    values = [(k[0], k[1], k[2], (k[3], k[4])) + tuple(k[5:]) for k in keys]
+    return {n for i, n in enumerate(names) if len({v[i] for v in values}) == 1 and n != "pass"}
+
+
+def shared_text(key, params, constant):
+    parts = [f"{p}={v}" for p, v in zip(params, key[5:]) if p in constant and v != "" and p != "seed"
+             and not (p == "fault" and v == "none")]
+    if "variant" in constant:
+        parts.insert(0, key[1])
+    if "resolution" in constant:
+        parts.append(f"{key[3]}x{key[4]}")
     return " ".join(parts)
 
 
@@ -218,12 +241,15 @@ def print_report(runs, comparisons, missing, params_of, notes, args):
         print(f"  {run_identity(run)}")
     header = f"{'case':<52} {'run':<14} {'base ms':>9} {'ms':>9} {'ratio':>7} {'95% CI':>17} {'noise':>7}  verdict"
     current = None
+    constant = {}
     for c in sorted(comparisons, key=lambda c: (c.key[0], [oitcsv.sort_key(v) for v in c.key[1:]], c.label)):
         exp = c.key[0]
         if exp != current:
             current = exp
-            print(f"\n{exp}:\n{header}")
-        desc = describe_key(c.key, params_of[exp])
+            constant = constant_fields([d.key for d in comparisons if d.key[0] == exp], params_of[exp])
+            shared = shared_text(c.key, params_of[exp], constant)
+            print(f"\n{exp}" + (f" (every case: {shared})" if shared else "") + f":\n{header}")
+        desc = describe_key(c.key, params_of[exp], constant)
         ci = f"[{c.ci[0]:.2f}, {c.ci[1]:.2f}]" + ("*" if c.ci_method == "bootstrap" else " ")
         print(f"{desc:<52} {c.label:<14} {fmt_ms(c.base.median):>9} {fmt_ms(c.other.median):>9} "
               f"{c.ratio:>6.2f}x {ci:>17} {'x' + format(c.band, '.2f'):>7}  {c.verdict}")
@@ -298,13 +324,15 @@ def draw_figures(out_dir, runs, comparisons, params_of, args):
             ax.axvline(1.0, color="black", linewidth=0.8)
             ax.set_xscale("log")
             ax.set_yticks(range(len(page)))
-            ax.set_yticklabels([describe_key(k, params_of[exp]) for k in page], fontsize=8)
+            constant = constant_fields(keys, params_of[exp])
+            ax.set_yticklabels([describe_key(k, params_of[exp], constant) for k in page], fontsize=8)
             ax.invert_yaxis()
             ax.set_xlabel(f"median time ratio against {runs[0].label} (95% CI; >1 is slower)")
             ax.grid(True, axis="x", which="both", alpha=0.3)
             ax.legend(fontsize=8, loc="best")
             n_changed = sum(1 for c in comps if c.changed and c.key in index)
-            ax.set_title(f"{exp}: {n_changed} of {sum(1 for c in comps if c.key in index)} comparisons changed"
+            shared = shared_text(page[0], params_of[exp], constant)
+            ax.set_title(f"{exp}" + (f" ({shared})" if shared else "") + f": {n_changed} of {sum(1 for c in comps if c.key in index)} comparisons changed"
                          f"\n{runs[0].renderer()}" + (" (and others)" if len({r.renderer() for r in runs}) > 1
                                                        else ""), fontsize=10)
             suffix = f"-{page_no + 1}" if len(pages) > 1 else ""
@@ -329,6 +357,7 @@ def main(argv=None):
     ap.add_argument("--bootstrap", type=int, default=1000, help="bootstrap resamples (default 1000)")
     ap.add_argument("--seed", type=int, default=1, help="bootstrap seed (default 1)")
     args = ap.parse_args(argv)
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     if len(args.csv) < 2:
         ap.error("give at least two runs")
     if args.raw and len(args.raw) != len(args.csv):

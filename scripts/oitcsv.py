@@ -31,8 +31,7 @@ FRAMEWORK_PARAMS = ["fault", "seed"]
 KNOWN_METRICS = {
     "predicted_occupancy", "predicted_threads_per_sm", "model_gpu_used", "mismatched_pixels",
     "rmse", "max_abs_error", "mean_abs_error", "psnr", "max_error", "mismatches", "overflow_pixels",
-    "lost_fragments", "fragments", "total_fragments", "max_depth", "mean_depth", "peak_depth_complexity",
-    "bytes", "memory_mb", "speedup", "iterations", "contention",
+    "lost_fragments", "total_fragments", "peak_depth_complexity",
 }
 METRIC_PATTERN = re.compile(r"(error|rmse|psnr|mismatch|predicted|_used$|pixels$|overflow|_bytes$|_mb$|"
                             r"^measured_|_rate$|throughput|_per_s$)")

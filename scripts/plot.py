@@ -310,73 +310,105 @@ ERROR_COLUMNS = ("rmse", "max_abs_error")
 
 @plotter("oit")
 def plot_oit(data):
-    """Stacked pass times per technique, and error against total time with the Pareto front."""
+    """Per case group (scene, size, ...): stacked pass times per technique. Below: error against total
+    time for every technique, with each group's Pareto front (nothing both faster and more exact)."""
     totals = data.total_rows()
+    group_cols = [p for p in data.varying_params(totals)]
+    groups = dict(list(group_rows(totals, group_cols).items())[:MAX_FACETS]) if group_cols else {(): totals}
     errors = [c for c in ERROR_COLUMNS if any(oitcsv.to_float(r.get(c)) is not None for r in totals)]
-    fig = plt.figure(figsize=(13.0, 5.2))
-    grid = fig.add_gridspec(1, 1 + len(errors), width_ratios=[1.6] + [1.0] * len(errors))
-    stacked_passes(fig.add_subplot(grid[0, 0]), data)
-    for i, col in enumerate(errors):
-        pareto_scatter(fig.add_subplot(grid[0, 1 + i]), data, col)
-    fig.suptitle(title_of(data, "techniques: pass times and error against time"), fontsize=10)
+    ncols = max(len(groups), len(errors), 1)
+    nrows = 2 if errors else 1
+    fig = plt.figure(figsize=(max(11.0, 4.2 * ncols), 4.6 * nrows + 0.8))
+    grid = fig.add_gridspec(nrows, ncols * 2, hspace=0.55, wspace=0.8)
+    width = (ncols * 2) // len(groups)
+    share = None
+    for i, (gkey, grows) in enumerate(groups.items()):
+        ax = fig.add_subplot(grid[0, i * width:(i + 1) * width], sharey=share)
+        share = share or ax
+        stacked_passes(ax, data, grows, group_label(grows[0], group_cols) if group_cols else "passes per technique",
+                       legend=(i == len(groups) - 1))
+    if errors:
+        width = (ncols * 2) // len(errors)
+        for i, col in enumerate(errors):
+            pareto_scatter(fig.add_subplot(grid[1, i * width:(i + 1) * width]), data, col, group_cols,
+                           legend=(i == len(errors) - 1))
+    fig.suptitle(title_of(data, "techniques: pass times, and error against time"), fontsize=10)
     return fig
 
 
-def case_labels(data, rows):
-    others = data.varying_params(rows)
-    return lambda r: group_label(r, ["variant"] + others)
-
-
-def stacked_passes(ax, data):
-    totals = data.total_rows()
-    label_of = case_labels(data, totals)
-    cases = sorted({label_of(r) for r in totals})
+def stacked_passes(ax, data, totals, title, legend=True):
+    """One bar per technique: its named passes stacked, with the measured total as a black tick."""
+    variants = sorted({r["variant"] for r in totals})
+    case_of = {r["variant"]: r for r in totals}
     passes = [p for p in data.passes if p != "total"]
-    by_case_pass = {(label_of(r), r["pass"]): r for r in data.ok}
-    bottom = [0.0] * len(cases)
-    for p in passes:
-        ys = [value(by_case_pass[(c, p)]) if (c, p) in by_case_pass else 0.0 for c in cases]
-        ax.bar(range(len(cases)), ys, bottom=bottom, label=p)
+    same_case = {}
+    for r in data.ok:
+        t = case_of.get(r["variant"])
+        if t is not None and all(r.get(p) == t.get(p) for p in data.params) and \
+                r.get("width") == t.get("width"):
+            same_case[(r["variant"], r["pass"])] = r
+    bottom = [0.0] * len(variants)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for k, p in enumerate(passes):
+        ys = [value(same_case[(v, p)]) if (v, p) in same_case else 0.0 for v in variants]
+        ax.bar(range(len(variants)), ys, bottom=bottom, label=p, color=colors[k % len(colors)])
         bottom = [b + y for b, y in zip(bottom, ys)]
-    tot = [value(by_case_pass[(c, "total")]) for c in cases]
-    ax.scatter(range(len(cases)), tot, marker="_", s=400, color="black", zorder=3, label="total (measured)")
-    ax.set_xticks(range(len(cases)))
-    ax.set_xticklabels(cases, rotation=30, ha="right", fontsize=8)
+    tot = [value(case_of[v]) for v in variants]
+    ax.scatter(range(len(variants)), tot, marker="_", s=300, color="black", zorder=3, label="total (measured)")
+    ax.set_xticks(range(len(variants)))
+    ax.set_xticklabels(variants, rotation=35, ha="right", fontsize=8)
     ax.set_ylabel("median time (ms)")
     ax.grid(True, axis="y", alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title("passes per technique", fontsize=10)
+    ax.set_title(title, fontsize=9)
+    if legend:
+        ax.legend(fontsize=7, loc="upper right")
 
 
 def pareto_front(points):
-    """Points (time, error, label) that no other point beats in both time and error."""
+    """Points (time, error, ...) that no other point beats in both time and error, by time."""
     front = []
-    for p in sorted(points):
+    for p in sorted(points, key=lambda q: (q[0], q[1])):
         if not front or p[1] < front[-1][1]:
             front.append(p)
     return front
 
 
-def pareto_scatter(ax, data, column):
+def pareto_scatter(ax, data, column, group_cols, legend=True):
     totals = data.total_rows()
-    label_of = case_labels(data, totals)
-    points = [(value(r), oitcsv.to_float(r.get(column)), label_of(r)) for r in totals
-              if oitcsv.to_float(r.get(column)) is not None]
-    for t, e, lab in points:
-        ax.scatter(t, e, color="tab:blue", s=25)
-        ax.annotate(lab, (t, e), fontsize=7, xytext=(3, 3), textcoords="offset points")
-    front = pareto_front(points)
-    if front:
-        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="tab:red", linewidth=1.2)
-        ax.scatter([p[0] for p in front], [p[1] for p in front], facecolors="none", edgecolors="tab:red",
-                   s=90, label="Pareto front")
-        ax.legend(fontsize=8)
-    if points and spread_is_wide([p[0] for p in points]):
+    variants = sorted({r["variant"] for r in totals})
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    markers = "osD^vP*X"
+    groups = group_rows(totals, group_cols) if group_cols else {(): totals}
+    for gi, (gkey, grows) in enumerate(groups.items()):
+        points = [(value(r), oitcsv.to_float(r.get(column)), r["variant"]) for r in grows
+                  if oitcsv.to_float(r.get(column)) is not None]
+        for t, e, v in points:
+            ax.scatter(t, e, color=colors[variants.index(v) % len(colors)], marker=markers[gi % len(markers)],
+                       s=30, zorder=3)
+        front = pareto_front(points)
+        if front:
+            ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="tab:red",
+                    linewidth=0.9, linestyle="--", alpha=0.7)
+            ax.scatter([p[0] for p in front], [p[1] for p in front], facecolors="none", edgecolors="tab:red",
+                       s=110, zorder=2)
+            for t, e, v in front:
+                ax.annotate(v, (t, e), fontsize=7, xytext=(5, 4), textcoords="offset points", color="tab:red")
+    if legend:
+        handles = [plt.Line2D([], [], color=colors[i % len(colors)], marker="o", linestyle="", label=v)
+                   for i, v in enumerate(variants)]
+        if group_cols:
+            handles += [plt.Line2D([], [], color="black", markerfacecolor="none", marker=markers[i % len(markers)], linestyle="",
+                                   label=group_label(g[0], group_cols)) for i, g in enumerate(groups.values())]
+        handles.append(plt.Line2D([], [], color="tab:red", marker="o", markerfacecolor="none", linestyle="--",
+                                  label="Pareto front (per group)"))
+        ax.legend(handles=handles, fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    times = [value(r) for r in totals]
+    if spread_is_wide(times) or (times and max(times) / max(min(times), 1e-9) > 8):
         ax.set_xscale("log")
     ax.set_xlabel("total median time (ms)")
     ax.set_ylabel(column)
     ax.grid(True, alpha=0.3)
-    ax.set_title(f"{column} against time", fontsize=10)
+    ax.set_title(f"{column} against time", fontsize=9)
 
 
 def invalid_lines(data):
