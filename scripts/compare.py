@@ -264,7 +264,7 @@ def print_report(runs, comparisons, missing, params_of, notes, args):
         for r in bad:
             params = params_of.get(r["experiment"], [])
             print(f"not compared ({run.label}): {r['experiment']} {oitcsv.describe_case(r, params)}: "
-                  f"{r.get('status')} {r.get('reason', '')}".rstrip())
+                  f"{oitcsv.status_of(r)} {r.get('reason', '')}".rstrip())
     changed = [c for c in comparisons if c.changed]
     slower = sum(1 for c in changed if c.ratio > 1)
     within = len(comparisons) - len(changed)

@@ -85,6 +85,11 @@ def is_ok(row):
     return row.get("status") == "ok" and row.get("valid") == "1"
 
 
+def status_of(row):
+    """'invalid' for a case that ran but failed validation, else the status column."""
+    return "invalid" if row.get("status") == "ok" and row.get("valid") != "1" else row.get("status", "?")
+
+
 class Run:
     """One summary CSV: its rows, its parameter columns, and a label for legends and tables."""
 

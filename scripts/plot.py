@@ -12,6 +12,7 @@ with @plotter("<name>"); curves() and bars() do most of the work.
 import argparse
 import math
 import os
+import signal
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -248,8 +249,12 @@ def plot_occupancy(data):
         ax2.set_ylabel("predicted occupancy (model, %s)" % next(
             (r.get("model_gpu_used") for r in rows if r.get("model_gpu_used")), "?"))
         ax2.set_ylim(0, max(1.05, max(o for _, o in occ) * 1.05))
-        ax2.legend(loc="upper center", fontsize=8)
-    ax.legend(loc="upper left", fontsize=8)
+        # One legend, drawn on the top axes so the occupancy line does not run through it.
+        h1, l1 = ax.get_legend_handles_labels()
+        h2, l2 = ax2.get_legend_handles_labels()
+        ax2.legend(h1 + h2, l1 + l2, loc="upper left", fontsize=8, framealpha=1.0)
+    else:
+        ax.legend(loc="upper left", fontsize=8)
     fig.suptitle(title_of(data, "local array size vs time (Knowles 2013, fig. 3)"), fontsize=10)
     return fig
 
@@ -415,7 +420,7 @@ def invalid_lines(data):
     params = data.params
     seen, lines = set(), []
     for r in data.invalid:
-        text = f"{oitcsv.describe_case(r, params)}: {r.get('status')}" + (
+        text = f"{oitcsv.describe_case(r, params)}: {oitcsv.status_of(r)}" + (
             f" ({r['reason']})" if r.get("reason") else "")
         if text not in seen:
             seen.add(text)
@@ -455,6 +460,7 @@ def main(argv=None):
     ap.add_argument("--raw", nargs="*", default=[], help="matching --raw files (make parameter columns exact)")
     ap.add_argument("--format", default="png,svg", help="comma-separated figure formats (default png,svg)")
     args = ap.parse_args(argv)
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 
     try:
         raws = args.raw + [None] * (len(args.csv) - len(args.raw))
