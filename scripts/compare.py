@@ -1,0 +1,389 @@
+#!/usr/bin/python3
+"""Compare oitbench runs from different drivers, GPUs or commits, case by case, against the first.
+
+    scripts/compare.py A.csv B.csv [C.csv ...] [--raw A_raw.csv B_raw.csv ...] [-o DIR]
+
+A case is (experiment, variant, pass, resolution, every parameter); the driver, renderer, git sha and
+timestamp columns describe the run and stay out of the key. For every case and every later run this
+prints ratio = median(run) / median(first): above 1 is slower. The 95% confidence interval comes from
+a bootstrap over the repetitions when the --raw files are given, else from each median's MAD.
+
+A change is flagged only when the interval excludes 1 AND the ratio lies outside the case's noise
+band: max(--min-effect, exp(k * sqrt(cv_a^2 + cv_b^2))), cv = 1.4826 * MAD / median, the spread of
+single repetitions. On a shared 2-core VM identical code moves 20-30% between runs (up to 2x for
+sub-millisecond cases), which a within-run interval alone does not capture; the band keeps those from
+being called changes. Exit code 0 whatever the verdict; 2 for unreadable input.
+"""
+import argparse
+import csv
+import math
+import os
+import random
+import signal
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import oitcsv  # noqa: E402
+
+Z95 = 1.959964
+# Standard error of a sample median relative to the standard deviation of the samples (normal data).
+MEDIAN_SE_FACTOR = math.sqrt(math.pi / 2)
+ROWS_PER_FIGURE = 40
+SMALL_N = 10  # fewer repetitions than this: their full range is the noise
+
+
+class Case:
+    """One row of one run: its median, spread and (with --raw) its repetitions."""
+
+    def __init__(self, row, samples=None):
+        self.row = row
+        self.median = oitcsv.to_float(row.get("median_ms"))
+        self.mad = oitcsv.to_float(row.get("mad_ms")) or 0.0
+        self.n = int(oitcsv.to_float(row.get("samples")) or 1)
+        self.samples = samples or []
+
+    def cv(self):
+        """Robust coefficient of variation of single repetitions."""
+        return oitcsv.robust_sigma(self.mad) / self.median if self.median else 0.0
+
+    def log_se(self):
+        """Standard error of log(median)."""
+        return MEDIAN_SE_FACTOR * self.cv() / math.sqrt(max(1, self.n))
+
+    def typical_range(self):
+        """Where this case's repetitions fall: min to max for a handful of them (a single stalled
+        repetition among 3 leaves the MAD small but is real noise), else the 10-90% quantiles, or
+        median +- 2 robust sigma when only the summary is known."""
+        lo = oitcsv.to_float(self.row.get("min_ms"))
+        hi = oitcsv.to_float(self.row.get("max_ms"))
+        if len(self.samples) >= SMALL_N:
+            s = sorted(self.samples)
+            return s[int(0.1 * (len(s) - 1))], s[int(math.ceil(0.9 * (len(s) - 1)))]
+        if self.n >= SMALL_N or lo is None or hi is None:
+            sigma = oitcsv.robust_sigma(self.mad)
+            return self.median - 2 * sigma, self.median + 2 * sigma
+        return lo, hi
+
+
+def param_columns(runs, experiment):
+    """The same parameter columns for every run: a raw file's header is exact, so it wins."""
+    exact = next((r._raw_params for r in runs if r._raw_params is not None), None)
+    cols = []
+    for run in runs:
+        for c in (exact if exact is not None else run.params(experiment)):
+            if c not in cols and any(row.get(c, "") != "" for row in run.rows_of(experiment)):
+                cols.append(c)
+    return cols
+
+
+def case_key(row, params):
+    return (row["experiment"], row["variant"], row["pass"], row.get("width", ""), row.get("height", "")) + \
+        tuple(row.get(p, "") for p in params)
+
+
+def load_raw_samples(path, timers):
+    """{(experiment, variant, pass, params...): [ms]} from a raw file, in the summary row's timer."""
+    header, rows = oitcsv.read_csv(path)
+    if not oitcsv.is_raw_header(header):
+        raise oitcsv.ResultsError(f"{path}: not an oitbench --raw CSV (no rep/cpu_ms columns)")
+    params = oitcsv.raw_param_columns(header)
+    samples = {}
+    for r in rows:
+        key = (r["experiment"], r["variant"], r["pass"]) + tuple((p, r.get(p, "")) for p in params
+                                                                  if r.get(p, "") != "")
+        timer = timers.get(key, "cpu")
+        x = oitcsv.to_float(r.get("gpu_ms" if timer == "gpu" else "cpu_ms"))
+        if x is not None and x >= 0:
+            samples.setdefault(key, []).append(x)
+    return samples
+
+
+def raw_key(row, params):
+    return (row["experiment"], row["variant"], row["pass"]) + tuple((p, row.get(p, "")) for p in params
+                                                                     if row.get(p, "") != "")
+
+
+def bootstrap_ratio_ci(a, b, iterations, rng):
+    """Percentile 95% interval of median(b*) / median(a*) over resamples of both sets."""
+    ratios = []
+    for _ in range(iterations):
+        ma = oitcsv.median(rng.choices(a, k=len(a)))
+        mb = oitcsv.median(rng.choices(b, k=len(b)))
+        if ma > 0:
+            ratios.append(mb / ma)
+    ratios.sort()
+    if not ratios:
+        return float("nan"), float("nan")
+    lo = ratios[int(0.025 * (len(ratios) - 1))]
+    hi = ratios[int(math.ceil(0.975 * (len(ratios) - 1)))]
+    return lo, hi
+
+
+class Comparison:
+    """One case of one run against the same case of the first run."""
+
+    def __init__(self, key, label, base, other, args, rng):
+        self.key, self.label, self.base, self.other = key, label, base, other
+        self.ratio = other.median / base.median if base.median else float("nan")
+        if len(base.samples) >= 2 and len(other.samples) >= 2:
+            self.ci = bootstrap_ratio_ci(base.samples, other.samples, args.bootstrap, rng)
+            self.ci_method = "bootstrap"
+        else:
+            se = math.sqrt(base.log_se() ** 2 + other.log_se() ** 2)
+            self.ci = (self.ratio * math.exp(-Z95 * se), self.ratio * math.exp(Z95 * se))
+            self.ci_method = "mad"
+        self.band = max(args.min_effect, math.exp(args.noise_k * math.hypot(base.cv(), other.cv())))
+        excludes_one = self.ci[0] > 1 or self.ci[1] < 1
+        beyond_band = self.ratio > self.band or self.ratio < 1 / self.band
+        (alo, ahi), (blo, bhi) = base.typical_range(), other.typical_range()
+        separate = blo > ahi if self.ratio > 1 else bhi < alo
+        self.changed = excludes_one and beyond_band and separate
+        if self.changed:
+            self.verdict = "SLOWER" if self.ratio > 1 else "FASTER"
+        elif not beyond_band:
+            self.verdict = "within noise"
+        elif not excludes_one:
+            self.verdict = "within noise (CI includes 1)"
+        else:
+            self.verdict = "within noise (repetitions overlap)"
+
+
+def describe_key(key, params, constant=()):
+    """'dynamic size=33 pass=resolve 800x600', leaving out what every case of the experiment shares."""
+    exp, variant, pas, w, h = key[:5]
+    parts = [variant] if "variant" not in constant else []
+    for p, v in zip(params, key[5:]):
+        if v == "" or p in constant or p == "seed" or (p == "fault" and v == "none"):
+            continue
+        parts.append(f"{p}={v}")
+    if pas != "total":
+        parts.append(f"pass={pas}")
+    if "resolution" not in constant:
+        parts.append(f"{w}x{h}")
+    return " ".join(parts) or variant
+
+
+def constant_fields(keys, params):
+    """Names of the key fields that are the same in every one of `keys`: said once, not per row."""
+    names = ["experiment", "variant", "pass", "resolution"] + list(params)
+    values = [(k[0], k[1], k[2], (k[3], k[4])) + tuple(k[5:]) for k in keys]
+    return {n for i, n in enumerate(names) if len({v[i] for v in values}) == 1 and n != "pass"}
+
+
+def shared_text(key, params, constant):
+    parts = [f"{p}={v}" for p, v in zip(params, key[5:]) if p in constant and v != "" and p != "seed"
+             and not (p == "fault" and v == "none")]
+    if "variant" in constant:
+        parts.insert(0, key[1])
+    if "resolution" in constant:
+        parts.append(f"{key[3]}x{key[4]}")
+    return " ".join(parts)
+
+
+def run_identity(run):
+    r = next(iter(run.rows), {})
+    return (f"{run.label}: {r.get('gl_renderer', '?')} via {r.get('backend', '?')}, "
+            f"git {r.get('git_sha', '?')}, {r.get('timestamp_utc', '?')}, {r.get('hostname', '?')}")
+
+
+def compare(runs, raw_paths, args):
+    """All comparisons, the cases missing from some run, and the invalid ones."""
+    rng = random.Random(args.seed)
+    experiments = []
+    for run in runs:
+        for e in run.experiments():
+            if e not in experiments:
+                experiments.append(e)
+    per_run = []  # [{key: Case}]
+    params_of = {e: param_columns(runs, e) for e in experiments}
+    notes = []
+    for run, raw_path in zip(runs, raw_paths):
+        cases, timers = {}, {}
+        for row in run.rows:
+            params = params_of[row["experiment"]]
+            if not oitcsv.is_ok(row) or oitcsv.to_float(row.get("median_ms")) is None:
+                continue
+            key = case_key(row, params)
+            if key in cases:
+                notes.append(f"{run.label}: {describe_key(key, params)} appears twice; the first row is used")
+                continue
+            cases[key] = row
+            timers[raw_key(row, params)] = row.get("timer", "cpu")
+        samples = load_raw_samples(raw_path, timers) if raw_path else {}
+        per_run.append({k: Case(r, samples.get(raw_key(r, params_of[k[0]]))) for k, r in cases.items()})
+
+    comparisons, missing = [], []
+    base = per_run[0]
+    all_keys = []
+    for cases in per_run:
+        for k in cases:
+            if k not in all_keys:
+                all_keys.append(k)
+    for key in all_keys:
+        if key not in base or any(key not in c for c in per_run[1:]):
+            absent = [run.label for run, c in zip(runs, per_run) if key not in c]
+            missing.append((key, absent))
+        if key not in base:
+            continue
+        for run, cases in zip(runs[1:], per_run[1:]):
+            if key in cases:
+                comparisons.append(Comparison(key, run.label, base[key], cases[key], args, rng))
+    return comparisons, missing, params_of, notes
+
+
+def fmt_ms(x):
+    return f"{x:.4g}"
+
+
+def print_report(runs, comparisons, missing, params_of, notes, args):
+    print("runs (ratios are against the first):")
+    for run in runs:
+        print(f"  {run_identity(run)}")
+    header = f"{'case':<52} {'run':<14} {'base ms':>9} {'ms':>9} {'ratio':>7} {'95% CI':>17} {'noise':>7}  verdict"
+    current = None
+    constant = {}
+    for c in sorted(comparisons, key=lambda c: (c.key[0], [oitcsv.sort_key(v) for v in c.key[1:]], c.label)):
+        exp = c.key[0]
+        if exp != current:
+            current = exp
+            constant = constant_fields([d.key for d in comparisons if d.key[0] == exp], params_of[exp])
+            shared = shared_text(c.key, params_of[exp], constant)
+            print(f"\n{exp}" + (f" (every case: {shared})" if shared else "") + f":\n{header}")
+        desc = describe_key(c.key, params_of[exp], constant)
+        ci = f"[{c.ci[0]:.2f}, {c.ci[1]:.2f}]" + ("*" if c.ci_method == "bootstrap" else " ")
+        print(f"{desc:<52} {c.label:<14} {fmt_ms(c.base.median):>9} {fmt_ms(c.other.median):>9} "
+              f"{c.ratio:>6.2f}x {ci:>17} {'x' + format(c.band, '.2f'):>7}  {c.verdict}")
+    if any(c.ci_method == "bootstrap" for c in comparisons):
+        print("\n* bootstrap over raw repetitions; otherwise from each median's MAD")
+    for key, absent in missing:
+        print(f"not in every run: {key[0]} {describe_key(key, params_of[key[0]])} (missing from {', '.join(absent)})")
+    for n in notes:
+        print(f"note: {n}")
+    for run in runs:
+        bad = [r for r in run.rows if not oitcsv.is_ok(r)]
+        for r in bad:
+            params = params_of.get(r["experiment"], [])
+            print(f"not compared ({run.label}): {r['experiment']} {oitcsv.describe_case(r, params)}: "
+                  f"{oitcsv.status_of(r)} {r.get('reason', '')}".rstrip())
+    changed = [c for c in comparisons if c.changed]
+    slower = sum(1 for c in changed if c.ratio > 1)
+    within = len(comparisons) - len(changed)
+    vs = f" against {runs[0].label}" + (f" ({len(runs) - 1} runs compared with it)" if len(runs) > 2 else "")
+    extra = f"; {len(missing)} not in every run" if missing else ""
+    print(f"\n{within} cases within noise, {len(changed)} changed ({slower} slower, {len(changed) - slower} faster)"
+          f"{vs}{extra}")
+
+
+def write_csv(path, comparisons, params_of):
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(["experiment", "case", "run", "base_median_ms", "median_ms", "ratio", "ci_low", "ci_high",
+                    "ci_method", "noise_band", "changed", "verdict"])
+        for c in comparisons:
+            w.writerow([c.key[0], describe_key(c.key, params_of[c.key[0]]), c.label, c.base.median,
+                        c.other.median, f"{c.ratio:.6g}", f"{c.ci[0]:.6g}", f"{c.ci[1]:.6g}", c.ci_method,
+                        f"{c.band:.6g}", int(c.changed), c.verdict])
+
+
+def draw_figures(out_dir, runs, comparisons, params_of, args):
+    os.environ.setdefault("MPLBACKEND", "Agg")
+    import matplotlib
+    matplotlib.use(os.environ["MPLBACKEND"])
+    import matplotlib.pyplot as plt
+
+    written = []
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    labels = [r.label for r in runs[1:]]
+    by_exp = {}
+    for c in comparisons:
+        by_exp.setdefault(c.key[0], []).append(c)
+    for exp, comps in by_exp.items():
+        keys = sorted({c.key for c in comps}, key=lambda k: [oitcsv.sort_key(v) for v in k[1:]])
+        pages = [keys[i:i + ROWS_PER_FIGURE] for i in range(0, len(keys), ROWS_PER_FIGURE)]
+        for page_no, page in enumerate(pages):
+            fig, ax = plt.subplots(figsize=(9.5, 1.6 + 0.32 * len(page) * max(1, len(labels)) ** 0.5))
+            index = {k: i for i, k in enumerate(page)}
+            offset = 0.6 / max(1, len(labels))
+            for c in comps:
+                if c.key not in index:
+                    continue
+                j = labels.index(c.label)
+                y = index[c.key] + (j - (len(labels) - 1) / 2) * offset
+                ax.plot([1 / c.band, c.band], [y, y], color="lightgrey", linewidth=6, solid_capstyle="butt",
+                        zorder=1)
+                ax.errorbar(c.ratio, y, xerr=[[c.ratio - c.ci[0]], [c.ci[1] - c.ratio]], fmt="o",
+                            color=colors[j % len(colors)], capsize=3, zorder=3,
+                            markeredgecolor="red" if c.changed else colors[j % len(colors)],
+                            markeredgewidth=2 if c.changed else 1, markersize=8 if c.changed else 5)
+                if c.changed:
+                    ax.annotate(c.verdict.lower(), (c.ci[1], y), xytext=(4, -3), textcoords="offset points",
+                                fontsize=7, color="red")
+            for j, lab in enumerate(labels):
+                ax.plot([], [], "o", color=colors[j % len(colors)], label=f"{lab} / {runs[0].label}")
+            ax.plot([], [], color="lightgrey", linewidth=6, label="noise band")
+            ax.axvline(1.0, color="black", linewidth=0.8)
+            ax.set_xscale("log")
+            ax.set_yticks(range(len(page)))
+            constant = constant_fields(keys, params_of[exp])
+            ax.set_yticklabels([describe_key(k, params_of[exp], constant) for k in page], fontsize=8)
+            ax.invert_yaxis()
+            ax.set_xlabel(f"median time ratio against {runs[0].label} (95% CI; >1 is slower)")
+            ax.grid(True, axis="x", which="both", alpha=0.3)
+            ax.legend(fontsize=8, loc="best")
+            n_changed = sum(1 for c in comps if c.changed and c.key in index)
+            shared = shared_text(page[0], params_of[exp], constant)
+            ax.set_title(f"{exp}" + (f" ({shared})" if shared else "") + f": {n_changed} of {sum(1 for c in comps if c.key in index)} comparisons changed"
+                         f"\n{runs[0].renderer()}" + (" (and others)" if len({r.renderer() for r in runs}) > 1
+                                                       else ""), fontsize=10)
+            suffix = f"-{page_no + 1}" if len(pages) > 1 else ""
+            for fmt in ("png", "svg"):
+                path = os.path.join(out_dir, f"compare-{exp}{suffix}.{fmt}")
+                fig.savefig(path, dpi=120, bbox_inches="tight")
+                written.append(path)
+            plt.close(fig)
+    return written
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("csv", nargs="+", help="summary CSVs (`oitbench run --out`); the first is the baseline")
+    ap.add_argument("--raw", nargs="+", default=[], help="the runs' --raw files, in the same order")
+    ap.add_argument("-o", "--out-dir", help="write compare-<experiment>.png/.svg and compare.csv here")
+    ap.add_argument("--labels", help="comma-separated run labels (default: file names)")
+    ap.add_argument("--min-effect", type=float, default=1.5,
+                    help="smallest ratio (or 1/ratio) that counts as a change (default 1.5)")
+    ap.add_argument("--noise-k", type=float, default=2.0,
+                    help="noise band width in robust standard deviations of log time (default 2)")
+    ap.add_argument("--bootstrap", type=int, default=1000, help="bootstrap resamples (default 1000)")
+    ap.add_argument("--seed", type=int, default=1, help="bootstrap seed (default 1)")
+    args = ap.parse_args(argv)
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)
+    if len(args.csv) < 2:
+        ap.error("give at least two runs")
+    if args.raw and len(args.raw) != len(args.csv):
+        ap.error(f"--raw needs one file per run ({len(args.csv)}), got {len(args.raw)}")
+    labels = args.labels.split(",") if args.labels else [None] * len(args.csv)
+    if len(labels) != len(args.csv):
+        ap.error("--labels needs one label per run")
+    raw_paths = args.raw or [None] * len(args.csv)
+    try:
+        runs = [oitcsv.Run.load(p, r, lab) for p, r, lab in zip(args.csv, raw_paths, labels)]
+        if len({r.label for r in runs}) < len(runs):  # same file names in different folders
+            for i, r in enumerate(runs):
+                r.label = f"{i + 1}:{r.label}"
+        comparisons, missing, params_of, notes = compare(runs, raw_paths, args)
+    except oitcsv.ResultsError as e:
+        print(f"compare.py: {e}", file=sys.stderr)
+        return 2
+    print_report(runs, comparisons, missing, params_of, notes, args)
+    if args.out_dir:
+        os.makedirs(args.out_dir, exist_ok=True)
+        write_csv(os.path.join(args.out_dir, "compare.csv"), comparisons, params_of)
+        for path in draw_figures(args.out_dir, runs, comparisons, params_of, args):
+            if path.endswith(".png"):
+                print(f"figure: {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,498 @@
+#!/usr/bin/python3
+"""Figures from oitbench runs: one PNG and one SVG per experiment and input file.
+
+    scripts/plot.py RUN.csv [RUN2.csv ...] [-o DIR]
+
+Only valid rows (status ok, valid 1) are drawn; the others are listed on stdout and in a note on the
+figure. Each experiment gets its own plot function from PLOTTERS; an experiment without one gets
+generic_plot(): median ms against its main numeric parameter, one line per variant, MAD as error bars.
+Adding a figure for a new experiment: write `def plot_<name>(data)` returning a Figure and decorate it
+with @plotter("<name>"); curves() and bars() do most of the work.
+"""
+import argparse
+import math
+import os
+import signal
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+import matplotlib  # noqa: E402
+
+matplotlib.use(os.environ["MPLBACKEND"])
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FuncFormatter  # noqa: E402
+
+import oitcsv  # noqa: E402
+
+PLOTTERS = {}
+MAX_FACETS = 6
+MAX_NOTE_LINES = 6
+
+
+def plotter(experiment):
+    def register(fn):
+        PLOTTERS[experiment] = fn
+        return fn
+    return register
+
+
+class ExperimentData:
+    """What a plot function gets: the valid rows of one experiment from one run, and its columns."""
+
+    def __init__(self, run, experiment):
+        self.run = run
+        self.experiment = experiment
+        rows = run.rows_of(experiment)
+        self.ok = [r for r in rows if oitcsv.is_ok(r) and oitcsv.to_float(r.get("median_ms")) is not None]
+        self.invalid = [r for r in rows if not oitcsv.is_ok(r)]
+        self.params = [p for p in run.params(experiment) if p not in oitcsv.FRAMEWORK_PARAMS]
+        self.metrics = run.metrics(experiment)
+        self.passes = sorted({r["pass"] for r in self.ok}, key=lambda p: (p == "total", p))
+
+    def total_rows(self):
+        """The `total` row of every case (a case without named passes has only that one)."""
+        return [r for r in self.ok if r["pass"] == "total"]
+
+    def varying_params(self, rows=None):
+        return oitcsv.varying(rows if rows is not None else self.ok, self.params)
+
+    def first_param(self, candidates, numeric=False, rows=None):
+        """The first of `candidates` that this experiment has and varies (numeric when asked)."""
+        rows = rows if rows is not None else self.ok
+        for c in candidates:
+            if c in self.params and c in self.varying_params(rows):
+                if not numeric or oitcsv.numeric_column(rows, c):
+                    return c
+        return None
+
+    def main_numeric_param(self, rows=None, exclude=()):
+        """The numeric parameter with the most distinct values: the natural x axis."""
+        rows = rows if rows is not None else self.ok
+        best, best_n = None, 1
+        for p in self.varying_params(rows):
+            if p in exclude or not oitcsv.numeric_column(rows, p):
+                continue
+            n = len({r[p] for r in rows})
+            if n > best_n:
+                best, best_n = p, n
+        return best
+
+
+def value(row, column="median_ms"):
+    return oitcsv.to_float(row.get(column))
+
+
+def resolution(data):
+    sizes = sorted({f"{r['width']}x{r['height']}" for r in data.ok + data.invalid if r.get("width")})
+    return ", ".join(sizes)
+
+
+def title_of(data, what=None):
+    head = f"{data.experiment}" + (f": {what}" if what else "")
+    return f"{head}\n{data.run.renderer()}, {resolution(data)}  [{data.run.label}]"
+
+
+def group_label(row, columns):
+    parts = []
+    for c in columns:
+        if c == "variant":
+            parts.append(row.get("variant", ""))
+        elif c == "pass":
+            parts.append(f"pass {row['pass']}")
+        else:
+            parts.append(f"{c}={row.get(c, '')}")
+    return ", ".join(p for p in parts if p)
+
+
+def group_rows(rows, columns):
+    groups = {}
+    for r in rows:
+        groups.setdefault(tuple(r.get(c, "") for c in columns), []).append(r)
+    return dict(sorted(groups.items(), key=lambda kv: [oitcsv.sort_key(v) for v in kv[0]]))
+
+
+def log2_ticks(ax, xs):
+    """Powers of two (and the values actually measured near a cliff) as plain numbers."""
+    lo, hi = min(xs), max(xs)
+    ticks = [2 ** k for k in range(int(math.floor(math.log2(lo))), int(math.ceil(math.log2(hi))) + 1)]
+    ax.set_xscale("log", base=2)
+    ax.set_xticks(ticks)
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.xaxis.set_minor_formatter(FuncFormatter(lambda v, _: ""))
+
+
+def spread_is_wide(values):
+    pos = [v for v in values if v and v > 0]
+    return len(pos) > 1 and max(pos) / min(pos) > 20
+
+
+def draw_lines(ax, rows, x, label_columns, per=1.0, per_column=None):
+    """One line per group of `label_columns`, y = median_ms / per (or / row[per_column]), MAD bars."""
+    xs_all, ys_all = [], []
+    for key, grp in group_rows(rows, label_columns).items():
+        pts = []
+        for r in grp:
+            xv, y, mad = oitcsv.to_float(r.get(x)), value(r), value(r, "mad_ms") or 0.0
+            div = (oitcsv.to_float(r.get(per_column)) if per_column else per) or 1.0
+            if xv is not None and y is not None:
+                pts.append((xv, y / div, mad / div))
+        pts.sort()
+        if not pts:
+            continue
+        xs, ys, es = zip(*pts)
+        ax.errorbar(xs, ys, yerr=es, marker="o", markersize=4, capsize=3, linewidth=1.5,
+                    label=group_label(grp[0], label_columns) or "all")
+        xs_all += xs
+        ys_all += ys
+    return xs_all, ys_all
+
+
+def curves(data, x_candidates=(), facet_candidates=(), ylabel="median time (ms)", what=None, logy=None):
+    """Median vs x, one line per variant (and per other varying parameter), one panel per facet value."""
+    rows = data.total_rows()
+    x = data.first_param(x_candidates, numeric=True, rows=rows) or data.main_numeric_param(rows)
+    if x is None:
+        return bars(data, what=what)
+    facet = data.first_param([f for f in facet_candidates if f != x], rows=rows)
+    facets = group_rows(rows, [facet]) if facet else {(): rows}
+    facets = dict(list(facets.items())[:MAX_FACETS])
+    others = [p for p in data.varying_params(rows) if p not in (x, facet)]
+    label_columns = ["variant"] + others
+    fig, axes = plt.subplots(1, len(facets), figsize=(5.2 * len(facets) + 1.5, 4.6), squeeze=False,
+                             sharey=True)
+    for ax, (fkey, frows) in zip(axes[0], facets.items()):
+        xs, ys = draw_lines(ax, frows, x, label_columns)
+        if xs and min(xs) > 0 and max(xs) / min(xs) >= 8:
+            log2_ticks(ax, xs)
+        if logy or (logy is None and spread_is_wide(ys)):
+            ax.set_yscale("log")
+        ax.set_xlabel(x)
+        ax.grid(True, which="both", alpha=0.3)
+        if facet:
+            ax.set_title(f"{facet} = {fkey[0]}", fontsize=10)
+    axes[0][0].set_ylabel(ylabel)
+    axes[0][-1].legend(fontsize=8, loc="best")
+    fig.suptitle(title_of(data, what), fontsize=10)
+    return fig
+
+
+def bars(data, category_candidates=(), what=None, ylabel="median time (ms)"):
+    """Grouped bars: one group per variant (or the first of `category_candidates`), one bar per
+    combination of the other varying parameters, MAD as error bars."""
+    rows = data.total_rows()
+    category = data.first_param(category_candidates, rows=rows) or "variant"
+    others = [c for c in (["variant"] + data.varying_params(rows)) if c != category and
+              (c != "variant" or len({r["variant"] for r in rows}) > 1)]
+    categories = list(group_rows(rows, [category]).keys())
+    series = group_rows(rows, others) if others else {(): rows}
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.0 + 0.5 * len(categories) * max(1, len(series))), 4.6))
+    width = 0.8 / max(1, len(series))
+    for i, (skey, srows) in enumerate(series.items()):
+        by_cat = {r.get(category, ""): r for r in srows}
+        xs, ys, es = [], [], []
+        for j, ckey in enumerate(categories):
+            r = by_cat.get(ckey[0])
+            if r is not None:
+                xs.append(j + (i - (len(series) - 1) / 2) * width)
+                ys.append(value(r))
+                es.append(value(r, "mad_ms") or 0.0)
+        ax.bar(xs, ys, width=width, yerr=es, capsize=3,
+               label=group_label(srows[0], others) if others else None)
+    ax.set_xticks(range(len(categories)))
+    ax.set_xticklabels([c[0] for c in categories], rotation=20 if len(categories) > 4 else 0, ha="right"
+                       if len(categories) > 4 else "center")
+    ax.set_xlabel(category)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, axis="y", alpha=0.3)
+    if others:
+        ax.legend(fontsize=8)
+    fig.suptitle(title_of(data, what), fontsize=10)
+    return fig
+
+
+def generic_plot(data):
+    rows = data.total_rows()
+    if data.main_numeric_param(rows):
+        others = [p for p in data.varying_params(rows) if p != data.main_numeric_param(rows)]
+        return curves(data, facet_candidates=others[:1])
+    return bars(data)
+
+
+@plotter("occupancy")
+def plot_occupancy(data):
+    """The staircase: ms per full-screen draw against the local array size, with the model's occupancy."""
+    rows = data.total_rows()
+    others = [p for p in data.varying_params(rows) if p not in ("size", "draws")]
+    fig, ax = plt.subplots(figsize=(8.5, 5.0))
+    draws_vary = "draws" in data.varying_params(rows)
+    label_columns = ["variant"] + (["draws"] if draws_vary else []) + others
+    xs, ys = draw_lines(ax, rows, "size", label_columns, per_column="draws")
+    if not xs:
+        ax.text(0.5, 0.5, "no valid rows", ha="center", transform=ax.transAxes)
+        return fig
+    log2_ticks(ax, xs)
+    ax.set_yscale("log" if spread_is_wide(ys) else "linear")
+    ax.set_xlabel("SIZE (elements in vec4 myArray[SIZE])")
+    ax.set_ylabel("median ms per draw (MAD bars)")
+    ax.grid(True, which="both", alpha=0.3)
+    annotate_unroll_cliff(ax, data, rows, label_columns)
+
+    occ = [(oitcsv.to_float(r.get("size")), oitcsv.to_float(r.get("predicted_occupancy")))
+           for r in rows if oitcsv.to_float(r.get("predicted_occupancy")) is not None]
+    if occ:
+        occ = sorted(set(occ))
+        ax2 = ax.twinx()
+        ax2.step([s for s, _ in occ], [o for _, o in occ], where="post", color="grey", linestyle="--",
+                 label="predicted occupancy")
+        ax2.set_ylabel("predicted occupancy (model, %s)" % next(
+            (r.get("model_gpu_used") for r in rows if r.get("model_gpu_used")), "?"))
+        ax2.set_ylim(0, max(1.05, max(o for _, o in occ) * 1.05))
+        # One legend, drawn on the top axes so the occupancy line does not run through it.
+        h1, l1 = ax.get_legend_handles_labels()
+        h2, l2 = ax2.get_legend_handles_labels()
+        ax2.legend(h1 + h2, l1 + l2, loc="upper left", fontsize=8, framealpha=1.0)
+    else:
+        ax.legend(loc="upper left", fontsize=8)
+    fig.suptitle(title_of(data, "local array size vs time (Knowles 2013, fig. 3)"), fontsize=10)
+    return fig
+
+
+def annotate_unroll_cliff(ax, data, rows, label_columns):
+    """Marks the biggest jump between SIZE 32 and 33: where llvmpipe's NIR stops unrolling loops."""
+    best = None
+    for key, grp in group_rows(rows, label_columns).items():
+        by_size = {oitcsv.to_float(r["size"]): r for r in grp}
+        if 32 in by_size and 33 in by_size:
+            t32 = value(by_size[32]) / (oitcsv.to_float(by_size[32].get("draws")) or 1)
+            t33 = value(by_size[33]) / (oitcsv.to_float(by_size[33].get("draws")) or 1)
+            if t32 > 0 and (best is None or t33 / t32 > best[0]):
+                best = (t33 / t32, t33, group_label(grp[0], label_columns))
+    if best is None or best[0] < 2:
+        return
+    why = "llvmpipe: NIR unrolls loops up to 32 iterations" if "llvmpipe" in data.run.renderer() else \
+        "the loop is no longer unrolled"
+    ax.annotate(f"32 \u2192 33: {best[0]:.1f}x ({best[2]})\n{why}", xy=(33, best[1]),
+                xytext=(0.04, 0.62), textcoords="axes fraction", fontsize=8,
+                arrowprops=dict(arrowstyle="->", color="black"),
+                bbox=dict(boxstyle="round", fc="lightyellow", alpha=0.9))
+
+
+@plotter("sort")
+def plot_sort(data):
+    return curves(data, x_candidates=("n", "count", "size", "fragments", "depth", "layers"),
+                  facet_candidates=("keys", "distribution", "order", "input", "stage"),
+                  what="per-pixel sorts against n")
+
+
+@plotter("insert")
+def plot_insert(data):
+    return curves(data, x_candidates=("n", "size", "max_frags", "k", "count", "depth", "layers"),
+                  facet_candidates=("stage", "keys", "distribution", "order", "scene"),
+                  what="insertion into per-pixel arrays against n")
+
+
+@plotter("stencil")
+def plot_stencil(data):
+    return curves(data, x_candidates=("coverage", "fill", "fraction", "size", "n"),
+                  facet_candidates=("size", "max_frags", "layers", "n"),
+                  what="stencil-masked passes against coverage")
+
+
+@plotter("layout")
+def plot_layout(data):
+    return bars(data, category_candidates=("layout", "storage"), what="storage layouts")
+
+
+@plotter("spinlock")
+def plot_spinlock(data):
+    return bars(data, category_candidates=("lock", "spinlock", "mode"), what="spinlock variants")
+
+
+ERROR_COLUMNS = ("rmse", "max_abs_error")
+
+
+@plotter("oit")
+def plot_oit(data):
+    """Per case group (scene, size, ...): stacked pass times per technique. Below: error against total
+    time for every technique, with each group's Pareto front (nothing both faster and more exact)."""
+    totals = data.total_rows()
+    group_cols = [p for p in data.varying_params(totals)]
+    groups = dict(list(group_rows(totals, group_cols).items())[:MAX_FACETS]) if group_cols else {(): totals}
+    errors = [c for c in ERROR_COLUMNS if any(oitcsv.to_float(r.get(c)) is not None for r in totals)]
+    ncols = max(len(groups), len(errors), 1)
+    nrows = 2 if errors else 1
+    fig = plt.figure(figsize=(max(11.0, 4.2 * ncols), 4.6 * nrows + 0.8))
+    grid = fig.add_gridspec(nrows, ncols * 2, hspace=0.55, wspace=0.8)
+    width = (ncols * 2) // len(groups)
+    share = None
+    for i, (gkey, grows) in enumerate(groups.items()):
+        ax = fig.add_subplot(grid[0, i * width:(i + 1) * width], sharey=share)
+        share = share or ax
+        stacked_passes(ax, data, grows, group_label(grows[0], group_cols) if group_cols else "passes per technique",
+                       legend=(i == len(groups) - 1))
+    if errors:
+        width = (ncols * 2) // len(errors)
+        for i, col in enumerate(errors):
+            pareto_scatter(fig.add_subplot(grid[1, i * width:(i + 1) * width]), data, col, group_cols,
+                           legend=(i == len(errors) - 1))
+    fig.suptitle(title_of(data, "techniques: pass times, and error against time"), fontsize=10)
+    return fig
+
+
+def stacked_passes(ax, data, totals, title, legend=True):
+    """One bar per technique: its named passes stacked, with the measured total as a black tick."""
+    variants = sorted({r["variant"] for r in totals})
+    case_of = {r["variant"]: r for r in totals}
+    passes = [p for p in data.passes if p != "total"]
+    same_case = {}
+    for r in data.ok:
+        t = case_of.get(r["variant"])
+        if t is not None and all(r.get(p) == t.get(p) for p in data.params) and \
+                r.get("width") == t.get("width"):
+            same_case[(r["variant"], r["pass"])] = r
+    bottom = [0.0] * len(variants)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for k, p in enumerate(passes):
+        ys = [value(same_case[(v, p)]) if (v, p) in same_case else 0.0 for v in variants]
+        ax.bar(range(len(variants)), ys, bottom=bottom, label=p, color=colors[k % len(colors)])
+        bottom = [b + y for b, y in zip(bottom, ys)]
+    tot = [value(case_of[v]) for v in variants]
+    ax.scatter(range(len(variants)), tot, marker="_", s=300, color="black", zorder=3, label="total (measured)")
+    ax.set_xticks(range(len(variants)))
+    ax.set_xticklabels(variants, rotation=35, ha="right", fontsize=8)
+    ax.set_ylabel("median time (ms)")
+    ax.grid(True, axis="y", alpha=0.3)
+    ax.set_title(title, fontsize=9)
+    if legend:
+        ax.legend(fontsize=7, loc="upper right")
+
+
+def pareto_front(points):
+    """Points (time, error, ...) that no other point beats in both time and error, by time."""
+    front = []
+    for p in sorted(points, key=lambda q: (q[0], q[1])):
+        if not front or p[1] < front[-1][1]:
+            front.append(p)
+    return front
+
+
+def pareto_scatter(ax, data, column, group_cols, legend=True):
+    totals = data.total_rows()
+    variants = sorted({r["variant"] for r in totals})
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    markers = "osD^vP*X"
+    groups = group_rows(totals, group_cols) if group_cols else {(): totals}
+    for gi, (gkey, grows) in enumerate(groups.items()):
+        points = [(value(r), oitcsv.to_float(r.get(column)), r["variant"]) for r in grows
+                  if oitcsv.to_float(r.get(column)) is not None]
+        for t, e, v in points:
+            ax.scatter(t, e, color=colors[variants.index(v) % len(colors)], marker=markers[gi % len(markers)],
+                       s=30, zorder=3)
+        front = pareto_front(points)
+        if front:
+            ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="tab:red",
+                    linewidth=0.9, linestyle="--", alpha=0.7)
+            ax.scatter([p[0] for p in front], [p[1] for p in front], facecolors="none", edgecolors="tab:red",
+                       s=110, zorder=2)
+            for t, e, v in front:
+                ax.annotate(v, (t, e), fontsize=7, xytext=(5, 4), textcoords="offset points", color="tab:red")
+    if legend:
+        handles = [plt.Line2D([], [], color=colors[i % len(colors)], marker="o", linestyle="", label=v)
+                   for i, v in enumerate(variants)]
+        if group_cols:
+            handles += [plt.Line2D([], [], color="black", markerfacecolor="none", marker=markers[i % len(markers)], linestyle="",
+                                   label=group_label(g[0], group_cols)) for i, g in enumerate(groups.values())]
+        handles.append(plt.Line2D([], [], color="tab:red", marker="o", markerfacecolor="none", linestyle="--",
+                                  label="Pareto front (per group)"))
+        ax.legend(handles=handles, fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    times = [value(r) for r in totals]
+    if spread_is_wide(times) or (times and max(times) / max(min(times), 1e-9) > 8):
+        ax.set_xscale("log")
+    ax.set_xlabel("total median time (ms)")
+    ax.set_ylabel(column)
+    ax.grid(True, alpha=0.3)
+    ax.set_title(f"{column} against time", fontsize=9)
+
+
+def invalid_lines(data):
+    params = data.params
+    seen, lines = set(), []
+    for r in data.invalid:
+        text = f"{oitcsv.describe_case(r, params)}: {oitcsv.status_of(r)}" + (
+            f" ({r['reason']})" if r.get("reason") else "")
+        if text not in seen:
+            seen.add(text)
+            lines.append(text)
+    return lines
+
+
+def add_invalid_note(fig, lines):
+    if not lines:
+        return
+    shown = lines[:MAX_NOTE_LINES]
+    if len(lines) > MAX_NOTE_LINES:
+        shown.append(f"... and {len(lines) - MAX_NOTE_LINES} more (see stdout)")
+    text = "not plotted (invalid or failed):\n" + "\n".join(s if len(s) < 140 else s[:137] + "..." for s in shown)
+    fig.text(0.01, 0.01, text, fontsize=7, color="firebrick", va="bottom", family="monospace")
+    fig.subplots_adjust(bottom=0.2 + 0.025 * len(shown))
+
+
+def plot_experiment(data):
+    if not data.ok:
+        fig, ax = plt.subplots(figsize=(8, 3))
+        ax.axis("off")
+        ax.text(0.5, 0.6, "no valid rows to plot", ha="center", fontsize=12)
+        fig.suptitle(title_of(data), fontsize=10)
+        return fig
+    return PLOTTERS.get(data.experiment, generic_plot)(data)
+
+
+def figure_name(experiment, run, ambiguous):
+    return f"{experiment}-{run.label}" if ambiguous else experiment
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("csv", nargs="+", help="summary CSVs written by `oitbench run --out`")
+    ap.add_argument("-o", "--out-dir", help="where the figures go (default: figures/ beside the first CSV)")
+    ap.add_argument("--raw", nargs="*", default=[], help="matching --raw files (make parameter columns exact)")
+    ap.add_argument("--format", default="png,svg", help="comma-separated figure formats (default png,svg)")
+    args = ap.parse_args(argv)
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)
+
+    try:
+        raws = args.raw + [None] * (len(args.csv) - len(args.raw))
+        runs = [oitcsv.Run.load(p, r) for p, r in zip(args.csv, raws)]
+    except oitcsv.ResultsError as e:
+        print(f"plot.py: {e}", file=sys.stderr)
+        return 2
+    out_dir = args.out_dir or os.path.join(os.path.dirname(os.path.abspath(args.csv[0])), "figures")
+    os.makedirs(out_dir, exist_ok=True)
+    count = {}
+    for run in runs:
+        for exp in run.experiments():
+            count[exp] = count.get(exp, 0) + 1
+    written = []
+    for run in runs:
+        for exp in run.experiments():
+            data = ExperimentData(run, exp)
+            lines = invalid_lines(data)
+            for line in lines:
+                print(f"{run.label}: {exp}: not plotted: {line}")
+            fig = plot_experiment(data)
+            add_invalid_note(fig, lines)
+            name = figure_name(exp, run, count[exp] > 1)
+            for fmt in [f.strip() for f in args.format.split(",") if f.strip()]:
+                path = os.path.join(out_dir, f"{name}.{fmt}")
+                fig.savefig(path, dpi=120, bbox_inches="tight")
+                written.append(path)
+            plt.close(fig)
+            print(f"{run.label}: {exp}: {len(data.ok)} valid rows, {len(lines)} not plotted -> "
+                  f"{os.path.join(out_dir, name)}.{{{args.format}}}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,432 @@
+#!/usr/bin/python3
+"""Our measurements beside the papers' published numbers.
+
+    scripts/tables.py RUN.csv [RUN2.csv ...] [--paper DIR] [--format markdown|csv] [--table NAME]
+
+DIR holds the tidy paper tables (source,table,gpu,resolution,scene,view,technique,size,metric,unit,value);
+by default ../shared/paper-tables beside the repository. Every table prints the paper's numbers with ours
+beside them: absolute milliseconds, and speedups over the table's baseline technique (BASE-IS for
+Knowles) computed the same way for both, so the shapes compare across hardware. A paper row we have no
+measurement for shows "—".
+
+How our rows map to the papers' techniques is the explicit TECHNIQUES table below: a technique matches a
+row of our experiment when the row's words (variant and parameter values, split at punctuation, plus
+name=value forms) contain all the words of one of its alternatives and none of its excluded words.
+"""
+import argparse
+import csv
+import glob
+import os
+import re
+import signal
+import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import oitcsv  # noqa: E402
+
+DASH = "\u2014"
+
+
+def norm(text):
+    return re.sub(r"[^a-z0-9=_]", "", text.lower())
+
+
+def words(text):
+    """'no-early-out' -> {'no', 'early', 'out', 'noearlyout'}."""
+    parts = [w for w in re.split(r"[^a-z0-9]+", text.lower()) if w]
+    return set(parts) | ({"".join(parts)} if parts else set())
+
+
+def alternative_words(text):
+    """'bubble early_out=0' -> {'bubble', 'earlyout=0'}: what a row must contain."""
+    out = set()
+    for item in text.split():
+        if "=" in item:
+            out.add(norm(item).replace("_", ""))
+        else:
+            out |= {w for w in re.split(r"[^a-z0-9]+", item.lower()) if w}
+    return out
+
+
+class Technique:
+    """How one paper technique string is found among our rows."""
+
+    def __init__(self, experiment, alternatives, exclude=()):
+        self.experiment = experiment
+        self.alternatives = [alternative_words(a) for a in alternatives]
+        self.exclude = set().union(*(alternative_words(e) for e in exclude)) if exclude else set()
+
+    def matches(self, row_words):
+        if row_words & self.exclude:
+            return False
+        return any(a <= row_words for a in self.alternatives)
+
+
+def T(experiment, *alternatives, exclude=()):
+    return Technique(experiment, alternatives, exclude)
+
+
+# Paper technique -> our experiment and the words that identify it. Knowles: IS insertion sort, IMS
+# insertion-merge sort, RBS register-based block sort (-L local, -G global), BASE/BMA the allocation.
+_IS = ("is", "ins", "insertion", "insert")
+_NOT_IS = ("ims", "merge", "rbs", "rbsl", "rbsg", "register")
+
+
+def _alloc_sort(alloc, sort_words, exclude=()):
+    alts = [f"{alloc} {s}" for s in sort_words] + [f"{alloc}{s}" for s in sort_words if " " not in s]
+    return T("oit", *alts, exclude=exclude)
+
+
+TECHNIQUES = {
+    # Brüll 2018, appendix A.1 (register array index assignment) and A.3 (bubble sort): the sort experiment.
+    "naive insertion, dynamic index assignment: direct": T("sort", "direct"),
+    "naive insertion, dynamic index assignment: loop": T("sort", "loop", exclude=("unrolled",)),
+    "naive insertion, dynamic index assignment: switch": T("sort", "switch"),
+    "naive insertion, dynamic index assignment: if-else": T("sort", "ifelse", "if else", "branch"),
+    "bubble sort, no early out": T("sort", "bubble noearlyout", "bubble no early", "bubble earlyout=0",
+                                   "bubble early_out=0"),
+    "bubble sort, early out": T("sort", "bubble earlyout", "bubble early out", "bubble earlyout=1",
+                                "bubble early_out=1", exclude=("no", "noearlyout", "earlyout=0")),
+    # A.2: insertion into a per-pixel array with and without early out: the insert experiment.
+    "MLAB insertion x128, no early out": T("insert", "noearlyout", "no early out", "earlyout=0", "early_out=0"),
+    "MLAB insertion x128, early out": T("insert", "earlyout", "early out", "earlyout=1", "early_out=1",
+                                        exclude=("no", "noearlyout", "earlyout=0")),
+    "MLAB insertion x16, no early out": T("insert", "noearlyout", "no early out", "earlyout=0", "early_out=0"),
+    "MLAB insertion x16, early out": T("insert", "earlyout", "early out", "earlyout=1", "early_out=1",
+                                       exclude=("no", "noearlyout", "earlyout=0")),
+    # A.4/A.5: the stencil experiment (UMLAB only where our rows say umlab).
+    "MLAB no stencil": T("stencil", "nostencil", "no stencil", "stencil=0", "stencil=off", "none",
+                         exclude=("umlab",)),
+    "MLAB stencil": T("stencil", "stencil", "stencil=1", "stencil=on",
+                      exclude=("no", "nostencil", "stencil=0", "stencil=off", "umlab")),
+    "UMLAB no stencil": T("stencil", "umlab nostencil", "umlab no stencil", "umlab stencil=0"),
+    "UMLAB stencil": T("stencil", "umlab stencil", "umlab stencil=1", exclude=("no", "nostencil", "stencil=0")),
+    # 4.1: storage layouts.
+    "MLAB texture3d": T("layout", "texture3d", "texture 3d", "tex3d", "image3d"),
+    "MLAB ssbo": T("layout", "ssbo", "buffer", exclude=("interleaved", "interleave")),
+    "MLAB interleaved-ssbo 2x4": T("layout", "interleaved", "interleave"),
+    # Knowles 2013 (BMA): OIT is the unsorted-allocation baseline with insertion sort.
+    "OIT": _alloc_sort("base", _IS, exclude=_NOT_IS + ("bma",)),
+    "BMA-OIT": _alloc_sort("bma", _IS, exclude=_NOT_IS),
+    # Knowles 2014.
+    "BASE-IS": _alloc_sort("base", _IS, exclude=_NOT_IS + ("bma",)),
+    "BASE-IMS": _alloc_sort("base", ("ims", "merge"), exclude=("bma", "rbs")),
+    "BASE-RBS-L": _alloc_sort("base", ("rbs", "rbsl", "rbs l", "register"), exclude=("bma", "g", "global", "rbsg")),
+    "RBS-G": T("oit", "rbsg", "rbs g", "rbs global", exclude=("bma",)),
+    "BMA-IS": _alloc_sort("bma", _IS, exclude=_NOT_IS),
+    "BMA-IMS": _alloc_sort("bma", ("ims", "merge"), exclude=("rbs",)),
+    "BMA-RBS-L": _alloc_sort("bma", ("rbs", "rbsl", "rbs l", "register"), exclude=("g", "global", "rbsg")),
+    # CUDA-IS, CUDA-IMS, CUDA-RBS-L: not measurable from GL; always "—".
+}
+
+# Which of our passes a paper metric is.
+METRIC_PASSES = {
+    "total_time": ("total",),
+    "resolve_time": ("resolve", "sort", "composite", "resolve_sort"),
+    "fullscreen_pass_time": ("resolve", "fullscreen", "composite", "blend"),
+}
+SIZE_COLUMNS = ("size", "n", "k", "max_frags", "layers", "depth", "fragments", "count", "array_size")
+SCENE_COLUMNS = ("scene",)
+VIEW_COLUMNS = ("view", "camera")
+GENERIC_SCENES = {"sort-bench", "all", ""}
+
+
+class PaperTable:
+    def __init__(self, name, source, table, title, baseline, kind="times"):
+        self.name, self.source, self.table, self.title, self.baseline, self.kind = \
+            name, source, table, title, baseline, kind
+
+
+TABLES = [
+    PaperTable("bruell-A.1", "bruell2018-thesis", "A.1", "Brüll 2018 A.1: index assignment in naive insertion sort",
+               "naive insertion, dynamic index assignment: direct"),
+    PaperTable("bruell-A.2", "bruell2018-thesis", "A.2", "Brüll 2018 A.2: MLAB insertion with and without early out",
+               "MLAB insertion x{}, no early out"),
+    PaperTable("bruell-A.3", "bruell2018-thesis", "A.3", "Brüll 2018 A.3: bubble sort with and without early out",
+               "bubble sort, no early out"),
+    PaperTable("bruell-A.4", "bruell2018-thesis", "A.4", "Brüll 2018 A.4: stencil-masked MLAB", "MLAB no stencil"),
+    PaperTable("bruell-A.5", "bruell2018-thesis", "A.5", "Brüll 2018 A.5: stencil-masked UMLAB", "UMLAB no stencil"),
+    PaperTable("bruell-4.1", "bruell2018-thesis", "4.1", "Brüll 2018 4.1: MLAB storage layouts", "MLAB ssbo"),
+    PaperTable("knowles2014-1", "knowles2014-rbs", "1", "Knowles 2014 table 1: speedups over BASE-IS, all scenes",
+               "BASE-IS", kind="summary"),
+    PaperTable("knowles2014-2", "knowles2014-rbs", "2", "Knowles 2014 table 2: total and resolve times", "BASE-IS"),
+    PaperTable("knowles2014-3", "knowles2014-rbs", "3", "Knowles 2014 table 3: speedups over BASE-IS", "BASE-IS",
+               kind="speedups"),
+    PaperTable("knowles2013-1", "knowles2013-bma", "1",
+               "Knowles 2013 table 1: BMA speedup per interval (ours: BMA-IS over BASE-IS at that size)", "OIT",
+               kind="speedups"),
+    PaperTable("knowles2013-2", "knowles2013-bma", "2", "Knowles 2013 table 2: OIT and BMA-OIT times", "OIT"),
+]
+
+
+def row_words(row, params):
+    out = words(row.get("variant", ""))
+    for p in params:
+        v = row.get(p, "")
+        if v == "":
+            continue
+        if oitcsv.to_float(v) is None:
+            out |= words(v)
+        out.add(f"{norm(p).replace('_', '')}={norm(v).replace('_', '')}")
+    return out
+
+
+def load_paper(paper_dir):
+    files = sorted(glob.glob(os.path.join(paper_dir, "*.csv")))
+    if not files:
+        raise oitcsv.ResultsError(f"{paper_dir}: no paper tables (*.csv) there; give --paper DIR")
+    rows = []
+    for f in files:
+        header, part = oitcsv.read_csv(f)
+        if "technique" not in header or "value" not in header:
+            raise oitcsv.ResultsError(f"{f}: not a paper table (needs source,table,...,technique,metric,value)")
+        rows += part
+    return rows
+
+
+class Ours:
+    """Our valid rows, by experiment, with the words that identify their technique."""
+
+    def __init__(self, runs):
+        self.rows = []  # (run, row, words)
+        for run in runs:
+            for exp in run.experiments():
+                params = run.params(exp)
+                for r in run.rows_of(exp):
+                    if oitcsv.is_ok(r) and oitcsv.to_float(r.get("median_ms")) is not None:
+                        self.rows.append((run, r, row_words(r, params), params))
+
+    def describe(self, experiment):
+        found = [(run, r) for run, r, _, _ in self.rows if r["experiment"] == experiment]
+        if not found:
+            return None
+        res = sorted({f"{r['width']}x{r['height']}" for _, r in found})
+        return f"{found[0][0].renderer()}, {', '.join(res)}"
+
+    def lookup(self, technique, size, scene, metric, view=""):
+        """Median ms of our rows matching a paper row (median over several matching rows), or None."""
+        rule = TECHNIQUES.get(technique)
+        if rule is None:
+            return None, 0
+        passes = METRIC_PASSES.get(metric_base(metric), ("total",))
+        hits = []
+        for _, r, ws, params in self.rows:
+            if r["experiment"] != rule.experiment or r["pass"] not in passes or not rule.matches(ws):
+                continue
+            if size and not size_matches(r, params, size):
+                continue
+            scene_col = next((c for c in SCENE_COLUMNS if c in params and r.get(c)), None)
+            if scene_col and scene not in GENERIC_SCENES and norm(r[scene_col]) != norm(scene):
+                continue
+            view_col = next((c for c in VIEW_COLUMNS if c in params and r.get(c)), None)
+            if view_col and view and norm(r[view_col]) != norm(view):
+                continue
+            hits.append((passes.index(r["pass"]), oitcsv.to_float(r["median_ms"])))
+        if not hits:
+            return None, 0
+        best_pass = min(h[0] for h in hits)
+        values = [v for p, v in hits if p == best_pass]
+        return statistics.median(values), len(values)
+
+    def cases(self, experiment):
+        """Our (size, scene, resolution) groups for an experiment: where summary speedups are taken."""
+        groups = {}
+        for _, r, _, params in self.rows:
+            if r["experiment"] != experiment or r["pass"] != "total":
+                continue
+            size_col = next((c for c in SIZE_COLUMNS if c in params and r.get(c)), None)
+            scene_col = next((c for c in SCENE_COLUMNS if c in params and r.get(c)), None)
+            key = (r.get(size_col, "") if size_col else "", r.get(scene_col, "") if scene_col else "",
+                   r["width"], r["height"])
+            groups.setdefault(key, None)
+        return list(groups)
+
+
+def size_matches(row, params, size):
+    want = oitcsv.to_float(size)
+    for c in SIZE_COLUMNS:
+        if c in params and row.get(c, "") != "":
+            return oitcsv.to_float(row[c]) == want
+    return False
+
+
+def metric_base(metric):
+    """'total_speedup_vs_BASE-IS' -> 'total_time'; 'average_resolve_speedup_vs_BASE-IS' -> 'resolve_time'."""
+    if "resolve" in metric:
+        return "resolve_time"
+    if "fullscreen" in metric:
+        return "fullscreen_pass_time"
+    return "total_time"
+
+
+def fmt(x, digits=3):
+    if x is None:
+        return DASH
+    return f"{x:.{digits}g}" if abs(x) < 1000 else f"{x:.0f}"
+
+
+def baseline_name(table, technique):
+    """A.2's baseline depends on the row ('MLAB insertion x16, ...' against 'x16, no early out')."""
+    if "{}" in table.baseline:
+        m = re.search(r"x(\d+)", technique)
+        return table.baseline.format(m.group(1) if m else "")
+    return table.baseline
+
+
+def build_rows(table, paper_rows, ours):
+    rows = [r for r in paper_rows if r["source"] == table.source and r["table"] == table.table and r["technique"]]
+    out = []
+    if table.kind == "summary":
+        return summary_rows(table, rows, ours)
+    for r in rows:
+        paper_value = oitcsv.to_float(r["value"])
+        ours_ms, n = ours.lookup(r["technique"], r["size"], r["scene"], r["metric"], r["view"])
+        base_tech = baseline_name(table, r["technique"])
+        if table.kind == "speedups":
+            paper_speedup = paper_value
+        else:
+            base = next((b for b in rows if b["technique"] == base_tech and b["scene"] == r["scene"] and
+                         b["view"] == r["view"] and b["size"] == r["size"] and b["metric"] == r["metric"]), None)
+            base_v = oitcsv.to_float(base["value"]) if base else None
+            paper_speedup = base_v / paper_value if base_v and paper_value else None
+        metric = metric_base(r["metric"]) if table.kind == "speedups" else r["metric"]
+        ours_base, _ = ours.lookup(base_tech, r["size"], r["scene"], metric, r["view"])
+        if table.kind == "speedups":
+            ours_ms, n = ours.lookup(r["technique"], r["size"], r["scene"], metric, r["view"])
+        ours_speedup = ours_base / ours_ms if ours_base and ours_ms else None
+        out.append({
+            "table": table.name, "scene": r["scene"], "view": r["view"], "size": r["size"],
+            "technique": r["technique"], "metric": r["metric"],
+            "paper": paper_value if table.kind != "speedups" else None, "unit": r["unit"],
+            "paper_speedup": paper_speedup,
+            "ours_ms": ours_ms if table.kind != "speedups" else ours_ms, "ours_speedup": ours_speedup,
+            "ours_cases": n,
+        })
+    return out
+
+
+def summary_rows(table, rows, ours):
+    """Knowles 2014 table 1: average and best speedup over BASE-IS; ours over our own cases."""
+    out = []
+    for r in rows:
+        tech = r["technique"]
+        speedups = []
+        for size, scene, w, h in ours.cases(TECHNIQUES["BASE-IS"].experiment):
+            if tech not in TECHNIQUES:
+                break
+            base, _ = ours.lookup("BASE-IS", size, scene or "all", metric_base(r["metric"]))
+            mine, _ = ours.lookup(tech, size, scene or "all", metric_base(r["metric"]))
+            if base and mine:
+                speedups.append(base / mine)
+        if speedups:
+            ours_value = max(speedups) if r["metric"].startswith("best") else statistics.mean(speedups)
+        else:
+            ours_value = None
+        out.append({"table": table.name, "scene": r["scene"], "view": "", "size": "", "technique": tech,
+                    "metric": r["metric"], "paper": None, "unit": r["unit"],
+                    "paper_speedup": oitcsv.to_float(r["value"]), "ours_ms": None, "ours_speedup": ours_value,
+                    "ours_cases": len(speedups)})
+    return out
+
+
+def render_markdown(table, rows, ours, paper_rows):
+    gpu = next((r["gpu"] for r in paper_rows if r["source"] == table.source and r["table"] == table.table), "?")
+    res = next((r["resolution"] for r in paper_rows if r["source"] == table.source and r["table"] == table.table
+                and r["resolution"]), "")
+    exp = TECHNIQUES.get(table.baseline.format("16"), TECHNIQUES.get("BASE-IS")).experiment
+    mine = ours.describe(exp)
+    baseline_text = ("the same scene's no-early-out row" if "{}" in table.baseline else table.baseline)
+    lines = [f"### {table.title}", "",
+             f"Paper: {gpu}{', ' + res if res else ''}. Ours: `{exp}` on " +
+             (mine if mine else f"— (no valid `{exp}` rows in the given CSVs)") + ".",
+             f"Speedup = time of {baseline_text} / time (paper and ours alike).",
+             ""]
+    cols = [("scene", "scene"), ("view", "view"), ("size", "size"), ("technique", "technique"),
+            ("metric", "metric")]
+    cols = [c for c in cols if len({r[c[0]] for r in rows}) > 1 or c[0] == "technique"]
+    if table.kind == "times":
+        value_cols = [("paper", "paper"), ("paper_speedup", "paper speedup"), ("ours_ms", "ours ms"),
+                      ("ours_speedup", "ours speedup")]
+    else:
+        value_cols = [("paper_speedup", "paper speedup"), ("ours_speedup", "ours speedup")]
+    header = [name for _, name in cols] + [name for _, name in value_cols]
+    lines.append("| " + " | ".join(header) + " |")
+    lines.append("|" + "|".join("---" for _ in cols) + "|" + "|".join("---:" for _ in value_cols) + "|")
+    for r in rows:
+        cells = [r[k] for k, _ in cols]
+        for k, _ in value_cols:
+            v = r[k]
+            if k == "paper" and v is not None:
+                cells.append(f"{fmt(v, 4)} {r['unit']}")
+            elif k.endswith("speedup"):
+                cells.append(f"{fmt(v)}x" if v is not None else DASH)
+            else:
+                cells.append(fmt(v, 4))
+        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+CSV_COLUMNS = ["table", "scene", "view", "size", "technique", "metric", "paper", "unit", "paper_speedup",
+               "ours_ms", "ours_speedup", "ours_cases"]
+
+
+def default_paper_dir():
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    return os.path.normpath(os.path.join(repo, "..", "shared", "paper-tables"))
+
+
+def select_tables(name):
+    if not name:
+        return TABLES
+    exact = [t for t in TABLES if t.name.lower() == name.lower()]
+    if exact:
+        return exact
+    found = [t for t in TABLES if name.lower() in t.name.lower()]
+    if not found:
+        raise oitcsv.ResultsError(f"no table '{name}'; tables: {', '.join(t.name for t in TABLES)}")
+    return found
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("csv", nargs="*", help="summary CSVs written by `oitbench run --out`")
+    ap.add_argument("--paper", default=default_paper_dir(),
+                    help="folder of the papers' tidy CSVs (default: ../shared/paper-tables beside the repo)")
+    ap.add_argument("--format", choices=("markdown", "csv"), default="markdown")
+    ap.add_argument("--table", help="one table (e.g. bruell-A.1, knowles2014-2; a unique part of the name works)")
+    ap.add_argument("--list", action="store_true", help="list the tables and the technique mapping")
+    args = ap.parse_args(argv)
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `tables.py | head` ends quietly
+    if args.list:
+        for t in TABLES:
+            print(f"{t.name:<15} {t.title}")
+        print("\ntechnique mapping (paper technique -> our experiment: alternatives of words, excluded words):")
+        for tech, rule in TECHNIQUES.items():
+            alts = " | ".join(" ".join(sorted(a)) for a in rule.alternatives)
+            print(f"  {tech:<52} -> {rule.experiment}: {alts}" + (
+                f"; not {' '.join(sorted(rule.exclude))}" if rule.exclude else ""))
+        return 0
+    try:
+        tables = select_tables(args.table)
+        paper_rows = load_paper(args.paper)
+        ours = Ours([oitcsv.Run.load(p) for p in args.csv])
+    except oitcsv.ResultsError as e:
+        print(f"tables.py: {e}", file=sys.stderr)
+        return 2
+    if args.format == "csv":
+        w = csv.DictWriter(sys.stdout, fieldnames=CSV_COLUMNS, lineterminator="\n")
+        w.writeheader()
+    for t in tables:
+        rows = build_rows(t, paper_rows, ours)
+        if args.format == "csv":
+            for r in rows:
+                w.writerow({k: ("" if v is None else (f"{v:.6g}" if isinstance(v, float) else v))
+                            for k, v in r.items()})
+        else:
+            print(render_markdown(t, rows, ours, paper_rows))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,108 @@
+"""tables.py: the papers' numbers with ours beside them (or "—"), speedups computed alike for both, the
+technique mapping, the csv format, and errors that name what is wrong."""
+import csv
+import io
+import os
+import unittest
+
+import synthetic as syn
+from support import TempDirTest, run_script
+
+PAPER_HEADER = "source,table,gpu,resolution,scene,view,technique,size,metric,unit,value\n"
+MINI_PAPER = PAPER_HEADER + "".join(
+    f'bruell2018-thesis,A.1,NVIDIA GTX 1080,800x800,sort-bench,,"naive insertion, dynamic index assignment: {t}",'
+    f"{n},total_time,ms,{v}\n"
+    for n, vals in ((4, (0.0584, 0.0573, 0.0573, 0.0573)), (16, (2.5999, 0.2068, 0.241, 0.213)))
+    for t, v in zip(("direct", "loop", "switch", "if-else"), vals)) + "".join(
+    f"knowles2014-rbs,2,NVIDIA GTX Titan,,planes,Fwd,{t},128,{m},ms,{v}\n"
+    for t, m, v in (("BASE-IS", "total_time", 77), ("BASE-IS", "resolve_time", 67), ("BMA-RBS-L", "total_time", 62),
+                    ("BMA-RBS-L", "resolve_time", 49), ("CUDA-IS", "total_time", 50)))
+
+
+def shared_paper_dir():
+    """The project's real paper tables, where the checkout has them beside it."""
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    path = os.path.normpath(os.path.join(repo, "..", "shared", "paper-tables"))
+    return path if os.path.isfile(os.path.join(path, "bruell2018_appendix_micro.csv")) else None
+
+
+class TablesMini(TempDirTest):
+    def setUp(self):
+        super().setUp()
+        os.makedirs(self.path("paper"))
+        with open(self.path("paper/mini.csv"), "w", encoding="utf-8") as f:
+            f.write(MINI_PAPER)
+
+    def sort_run(self):
+        return syn.write_summary(self.path("sort.csv"), syn.sort_rows(), params=["n", "keys"])
+
+    def oit_run(self):
+        return syn.write_summary(self.path("oit.csv"), syn.oit_rows(), metrics=["rmse", "max_abs_error"],
+                                 params=["scene", "max_frags"])
+
+    def test_paper_numbers_with_dashes_when_we_have_no_rows(self):
+        proc = run_script("tables.py", "--paper", self.path("paper"), "--table", "bruell-A.1")
+        self.assertIn("| 4 | naive insertion, dynamic index assignment: direct | 0.0584 ms | 1x | \u2014 | \u2014 |",
+                      proc.stdout)
+        self.assertIn("2.6 ms", proc.stdout)
+        self.assertIn("12.6x", proc.stdout)  # paper speedup of loop over direct at 16: 2.5999 / 0.2068
+
+    def test_ours_beside_the_paper_with_speedups_over_the_baseline(self):
+        proc = run_script("tables.py", self.sort_run(), "--paper", self.path("paper"), "--table", "A.1",
+                          "--format", "csv")
+        rows = {(r["size"], r["technique"].split(": ")[1]): r for r in csv.DictReader(io.StringIO(proc.stdout))}
+        direct, loop = rows[("16", "direct")], rows[("16", "loop")]
+        # synthetic: direct costs 1.0 * n^2/16, loop 0.3 * n^2/16, averaged over the random and reverse keys
+        self.assertAlmostEqual(float(direct["ours_ms"]), 20.0, places=3)
+        self.assertAlmostEqual(float(loop["ours_speedup"]), 1 / 0.3, places=3)
+        self.assertAlmostEqual(float(loop["paper_speedup"]), 2.5999 / 0.2068, places=3)
+        self.assertEqual(loop["ours_cases"], "2")
+
+    def test_knowles_techniques_map_onto_oit_variants(self):
+        proc = run_script("tables.py", self.oit_run(), "--paper", self.path("paper"), "--table", "knowles2014-2",
+                          "--format", "csv")
+        rows = {(r["technique"], r["metric"]): r for r in csv.DictReader(io.StringIO(proc.stdout))}
+        base, bma = rows[("BASE-IS", "total_time")], rows[("BMA-RBS-L", "total_time")]
+        self.assertAlmostEqual(float(bma["paper_speedup"]), 77 / 62, places=3)
+        # synthetic planes, 128: capture 4 + resolve 10*cost*2 + 0.1; base-is cost 1.0, bma-rbs 0.25
+        self.assertAlmostEqual(float(base["ours_ms"]), 24.1, places=3)
+        self.assertAlmostEqual(float(bma["ours_speedup"]), 24.1 / 9.1, places=3)
+        self.assertAlmostEqual(float(rows[("BMA-RBS-L", "resolve_time")]["ours_ms"]), 5.0, places=3)
+        self.assertEqual(rows[("CUDA-IS", "total_time")]["ours_ms"], "")  # CUDA: never ours
+
+    def test_unknown_table_and_missing_paper_dir_are_clear_errors(self):
+        proc = run_script("tables.py", "--paper", self.path("paper"), "--table", "nope", check=False)
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn("no table 'nope'", proc.stderr)
+        proc = run_script("tables.py", "--paper", self.path("nowhere"), check=False)
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn("no paper tables", proc.stderr)
+
+    def test_list_shows_the_mapping(self):
+        proc = run_script("tables.py", "--list")
+        self.assertIn("BMA-RBS-L", proc.stdout)
+        self.assertIn("-> oit:", proc.stdout)
+
+
+@unittest.skipUnless(shared_paper_dir(), "the shared paper tables are not beside this checkout")
+class TablesShared(TempDirTest):
+    def test_every_table_prints_the_published_numbers(self):
+        proc = run_script("tables.py")  # the default --paper
+        for needle in ("0.0584 ms",  # Brüll A.1, direct, 4
+                       "145.4 ms",  # A.2 powerplant x16 no early out, 32
+                       "1.109 ms",  # A.3 bubble no early out, 32
+                       "0.3901 ms",  # A.4 fullscreen pass, no stencil, 32
+                       "2.843 ms",  # A.5 UMLAB no stencil, 32
+                       "15.22 ms",  # 4.1 powerplant interleaved, 4
+                       "| BMA-RBS-L | average_total_speedup_vs_BASE-IS | 3x |",  # Knowles 2014 table 1
+                       "530 ms",  # Knowles 2014 table 2, powerplant V1 BASE-IS total
+                       "604 ms",  # Knowles 2013 table 2, powerplant OIT 512
+                       "3.78x"):  # Knowles 2013 table 1, powerplant 32
+            self.assertIn(needle, proc.stdout)
+        for name in ("A.1", "A.2", "A.3", "A.4", "A.5", "4.1", "Knowles 2014 table 1", "Knowles 2014 table 3",
+                     "Knowles 2013 table 1", "Knowles 2013 table 2"):
+            self.assertIn(name, proc.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
