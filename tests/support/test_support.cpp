@@ -23,7 +23,16 @@ std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
-ProcessResult spawn(const std::vector<std::string>& args, double timeout_s, double signal_after_s, int sig) {
+size_t data_rows(const std::filesystem::path& csv) {
+  std::error_code ec;
+  if (!std::filesystem::exists(csv, ec)) return 0;
+  auto rows = csv_parse(slurp(csv));
+  return rows.empty() ? 0 : rows.size() - 1;
+}
+
+// `signal_rows` > 0: send `sig` once `signal_csv` holds that many data rows.
+ProcessResult spawn(const std::vector<std::string>& args, double timeout_s, const std::filesystem::path& signal_csv,
+                    size_t signal_rows, int sig) {
   auto dir = temp_dir("proc");
   auto out_path = dir / "stdout", err_path = dir / "stderr";
   std::vector<std::string> full = {OITBENCH_EXE};
@@ -47,7 +56,7 @@ ProcessResult spawn(const std::vector<std::string>& args, double timeout_s, doub
   for (;;) {
     if (waitpid(pid, &status, WNOHANG) == pid) break;
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!signalled && signal_after_s >= 0 && s >= signal_after_s) {
+    if (!signalled && signal_rows > 0 && data_rows(signal_csv) >= signal_rows) {
       kill(pid, sig);
       signalled = true;
     }
@@ -69,11 +78,12 @@ ProcessResult spawn(const std::vector<std::string>& args, double timeout_s, doub
 }  // namespace
 
 ProcessResult run_oitbench(const std::vector<std::string>& args, double timeout_s) {
-  return spawn(args, timeout_s, -1, 0);
+  return spawn(args, timeout_s, {}, 0, 0);
 }
 
-ProcessResult run_oitbench_interrupted(const std::vector<std::string>& args, double after_s, int signal) {
-  return spawn(args, 600, after_s, signal);
+ProcessResult run_oitbench_interrupted(const std::vector<std::string>& args, const std::filesystem::path& csv,
+                                       size_t rows, int signal) {
+  return spawn(args, 600, csv, rows, signal);
 }
 
 std::vector<Row> read_csv_rows(const std::filesystem::path& path) {

@@ -20,8 +20,9 @@ struct ProcessResult {
 
 // Runs build/oitbench with the arguments (no shell); `timeout_s` kills it (exit_code 124).
 ProcessResult run_oitbench(const std::vector<std::string>& args, double timeout_s = 300);
-// Starts it and sends `signal` after `after_s` seconds (to test Ctrl-C).
-ProcessResult run_oitbench_interrupted(const std::vector<std::string>& args, double after_s, int signal);
+// Starts it and sends `signal` once `csv` holds at least `rows` data rows (to test Ctrl-C mid-run).
+ProcessResult run_oitbench_interrupted(const std::vector<std::string>& args, const std::filesystem::path& csv,
+                                       size_t rows, int signal);
 
 using Row = std::map<std::string, std::string>;
 std::vector<Row> read_csv_rows(const std::filesystem::path& path);
