@@ -19,8 +19,8 @@ BASE_COLUMNS = [
     "schema", "experiment", "variant", "pass", "status", "valid", "reason", "backend", "device", "gl_vendor",
     "gl_renderer", "gl_version", "width", "height", "reps", "warmup", "median_ms", "mad_ms", "min_ms", "max_ms",
     "mean_ms", "stddev_ms", "samples", "outliers", "cpu_median_ms", "cpu_mad_ms", "gpu_median_ms", "gpu_mad_ms",
-    "timer", "compile_ms", "warmup_ms", "preset", "git_sha", "timestamp_utc", "hostname", "cpu_model",
-    "lp_num_threads", "env",
+    "timer", "compile_ms", "program_cache", "warmup_ms", "preset", "git_sha", "timestamp_utc", "hostname",
+    "cpu_model", "lp_num_threads", "env", "parameters",
 ]
 RAW_BASE_COLUMNS = ["schema", "experiment", "variant", "pass", "rep", "cpu_ms", "gpu_ms", "backend", "gl_renderer",
                     "git_sha", "timestamp_utc", "preset"]
@@ -29,6 +29,11 @@ FRAMEWORK_PARAMS = ["fault", "seed"]
 # Metric columns declared by experiments (Experiment::metric_columns()). An experiment whose metrics
 # are not listed here still works when its names match METRIC_PATTERN or a raw file is given.
 KNOWN_METRICS = {
+    # every experiment's metric_columns() as of this build (files without a `parameters` column need them)
+    "lost_updates", "inconsistent_nodes", "line_segments", "peak_depth", "frac_pixels_off", "nonfinite",
+    "polygons", "mean_depth", "node_pool", "bma_intervals", "bma_auto_choice", "bma_auto_source",
+    "bma_auto_timings", "model_max_diff", "capped_updates", "flicker", "flicker_max", "lock_extension",
+    "touched_outside",
     "predicted_occupancy", "predicted_threads_per_sm", "model_gpu_used", "mismatched_pixels",
     "rmse", "max_abs_error", "mean_abs_error", "psnr", "max_error", "mismatches", "overflow_pixels",
     "lost_fragments", "total_fragments", "peak_depth_complexity",
@@ -131,10 +136,17 @@ class Run:
         """Parameter columns used by `experiment` (not `variant`, which has its own column)."""
         if experiment not in self._params_by_exp:
             rows = self.rows_of(experiment)
-            if self._raw_params is not None:
+            if "parameters" in self.header and any(r.get("parameters") for r in rows):
+                # Exact: the runner names each case's parameters (schema 1 files from this build on).
+                candidates = []
+                for r in rows:
+                    for name in r.get("parameters", "").split(";"):
+                        if name and name not in candidates:
+                            candidates.append(name)
+            elif self._raw_params is not None:
                 candidates = [c for c in self._raw_params if c in self.header]
             else:
-                candidates = [c for c in self.header[len(BASE_COLUMNS):] if c not in BASE_COLUMNS]
+                candidates = [c for c in self.header if c not in BASE_COLUMNS]
                 candidates = [c for c in candidates if c in FRAMEWORK_PARAMS or not is_metric_name(c)]
             self._params_by_exp[experiment] = [c for c in candidates if any(r.get(c, "") != "" for r in rows)]
         return self._params_by_exp[experiment]

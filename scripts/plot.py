@@ -313,32 +313,75 @@ def plot_spinlock(data):
 ERROR_COLUMNS = ("rmse", "max_abs_error")
 
 
+OIT_APPROX = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT", "unsorted"}
+
+
+def oit_label(row):
+    """The technique as the papers name it, with the node count where it matters (approximate ones)."""
+    t = row.get("technique") or row.get("variant") or "?"
+    if t in OIT_APPROX and t not in ("WBOIT", "unsorted") and row.get("nodes"):
+        t += f"/{row['nodes']}"
+    if t == "WBOIT" and row.get("wboit_weight"):
+        t += f"/{row['wboit_weight']}"
+    return t
+
+
+class _Relabelled:
+    """`data` with the variant column replaced by oit_label(), so the shared bar helpers label by technique."""
+
+    def __init__(self, data, rows):
+        self.ok = [dict(r, variant=oit_label(r)) for r in rows]
+        self.params = data.params
+        self.passes = data.passes
+
+
 @plotter("oit")
 def plot_oit(data):
-    """Per case group (scene, size, ...): stacked pass times per technique. Below: error against total
-    time for every technique, with each group's Pareto front (nothing both faster and more exact)."""
+    """One column per (scene, view, resolution): stacked pass times per technique on top, and below the
+    error against the exact reference against total time, every technique a point, with the Pareto
+    front (nothing both faster and more exact) marked: which technique to pick for an error budget."""
     totals = data.total_rows()
-    group_cols = [p for p in data.varying_params(totals)]
-    groups = dict(list(group_rows(totals, group_cols).items())[:MAX_FACETS]) if group_cols else {(): totals}
-    errors = [c for c in ERROR_COLUMNS if any(oitcsv.to_float(r.get(c)) is not None for r in totals)]
-    ncols = max(len(groups), len(errors), 1)
-    nrows = 2 if errors else 1
-    fig = plt.figure(figsize=(max(11.0, 4.2 * ncols), 4.6 * nrows + 0.8))
-    grid = fig.add_gridspec(nrows, ncols * 2, hspace=0.55, wspace=0.8)
-    width = (ncols * 2) // len(groups)
-    share = None
+    key_cols = [c for c in ("scene", "view", "width") if any(r.get(c) for r in totals)]
+    groups = dict(list(group_rows(totals, key_cols).items())[:MAX_FACETS])
+    error_col = next((c for c in ERROR_COLUMNS if any(oitcsv.to_float(r.get(c)) is not None for r in totals)), None)
+    ncols = max(len(groups), 1)
+    nrows = 2 if error_col else 1
+    fig, axes = plt.subplots(nrows, ncols, figsize=(max(7.0, 6.0 * ncols), 5.2 * nrows + 0.8), squeeze=False)
     for i, (gkey, grows) in enumerate(groups.items()):
-        ax = fig.add_subplot(grid[0, i * width:(i + 1) * width], sharey=share)
-        share = share or ax
-        stacked_passes(ax, data, grows, group_label(grows[0], group_cols) if group_cols else "passes per technique",
-                       legend=(i == len(groups) - 1))
-    if errors:
-        width = (ncols * 2) // len(errors)
-        for i, col in enumerate(errors):
-            pareto_scatter(fig.add_subplot(grid[1, i * width:(i + 1) * width]), data, col, group_cols,
-                           legend=(i == len(errors) - 1))
+        title = ", ".join(f"{c}={grows[0].get(c)}" for c in key_cols)
+        same = [r for r in data.ok if all(r.get(c) == grows[0].get(c) for c in key_cols)]
+        rel = _Relabelled(data, same)
+        stacked_passes(axes[0][i], rel, [r for r in rel.ok if r["pass"] == "total"], title, legend=(i == 0))
+        if error_col:
+            error_vs_time(axes[1][i], grows, error_col, title)
     fig.suptitle(title_of(data, "techniques: pass times, and error against time"), fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.95))
     return fig
+
+
+def error_vs_time(ax, rows, column, title):
+    points = [(value(r), oitcsv.to_float(r.get(column)), oit_label(r)) for r in rows
+              if oitcsv.to_float(r.get(column)) is not None and value(r) is not None]
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    families = sorted({p[2].split("/")[0] for p in points})
+    floor = 1e-6  # exact techniques (error ~1e-8) sit on the floor of the log axis
+    for t, e, label in points:
+        fam = label.split("/")[0]
+        ax.scatter(t, max(e, floor), color=colors[families.index(fam) % len(colors)], s=28, zorder=3)
+        ax.annotate(label, (t, max(e, floor)), fontsize=6, xytext=(3, 2), textcoords="offset points")
+    front = pareto_front([(t, max(e, floor), l) for t, e, l in points])
+    if front:
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="tab:red", linewidth=1.0,
+                linestyle="--", label="Pareto front")
+        ax.scatter([p[0] for p in front], [p[1] for p in front], facecolors="none", edgecolors="tab:red", s=90,
+                   zorder=4)
+        ax.legend(fontsize=7, loc="upper right")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("total median time (ms)")
+    ax.set_ylabel(f"{column} against exact (floor {floor:g})")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set_title(f"{column} against time: {title}", fontsize=9)
 
 
 def stacked_passes(ax, data, totals, title, legend=True):

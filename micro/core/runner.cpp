@@ -101,7 +101,7 @@ const std::vector<std::string>& base_columns() {
       "gl_renderer", "gl_version", "width", "height", "reps", "warmup", "median_ms", "mad_ms", "min_ms", "max_ms",
       "mean_ms", "stddev_ms", "samples", "outliers", "cpu_median_ms", "cpu_mad_ms", "gpu_median_ms", "gpu_mad_ms",
       "timer", "compile_ms", "program_cache", "warmup_ms", "preset", "git_sha", "timestamp_utc", "hostname", "cpu_model",
-      "lp_num_threads", "env"};
+      "lp_num_threads", "env", "parameters"};
   return cols;
 }
 
@@ -323,8 +323,13 @@ class Runner {
     row["reps"] = std::to_string(reps);
     row["warmup"] = std::to_string(warmup);
     row["timestamp_utc"] = utc_now();
+    std::string names;
     for (const auto& [k, v] : c.params.values())
-      if (k != "variant") row[k] = v;
+      if (k != "variant") {
+        row[k] = v;
+        names += (names.empty() ? "" : ";") + k;
+      }
+    row["parameters"] = names;  // which of the columns after the base ones are this case's parameters
     return row;
   }
 
