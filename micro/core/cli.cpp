@@ -102,7 +102,8 @@ int run_cli(int argc, char** argv) {
                          "  oitbench info --backend egl-device\n"
                          "  oitbench run occupancy --quick --out results/occ.csv\n"
                          "  oitbench run occupancy --set variant=unrolled --set size=32,33\n"
-                         "  oitbench run --preset default --out run.csv\n\n") +
+                         "  oitbench run --preset default --out run.csv\n"
+                         "  oitbench render --scene hairball --view rev --technique MLAB --set nodes=8 --out mlab.png\n\n") +
              kExitCodes);
   app.require_subcommand(1);
 
@@ -155,6 +156,19 @@ int run_cli(int argc, char** argv) {
   run->add_option("--preset-name", ropt.preset_name, "Recorded in the preset column")->group("");
   run->add_flag("--isolated-child", ropt.isolated_child, "Set by the parent for an isolated case")->group("");
 
+  auto* render = app.add_subcommand(
+      "render", "Render one scene view with one OIT technique and write the image (PNG), |image - exact| x 8, "
+                "the depth complexity in false colour and its histogram (CSV), plus the case's CSV row");
+  add_backend(render);
+  std::string r_scene = "planes", r_view = "fwd", r_technique = "BASE-IS", r_out = "render.png", r_resolution = "512x512";
+  std::vector<std::string> r_sets;
+  render->add_option("--scene", r_scene, "Scene name (scenes/NAME.json)");
+  render->add_option("--view", r_view, "View named in the scene file");
+  render->add_option("--technique", r_technique, "Technique (see: oitbench list, experiment oit)");
+  render->add_option("--out,-o", r_out, "Image file (.png); beside it: -diff8.png, -depth.png, -depth-histogram.csv, .csv");
+  render->add_option("--resolution", r_resolution, "WIDTHxHEIGHT");
+  render->add_option("--set", r_sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8)")->take_all();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -168,6 +182,23 @@ int run_cli(int argc, char** argv) {
       return 0;
     }
     if (*info) return print_info(copt);
+    if (*render) {
+      std::string stem = r_out.ends_with(".png") ? r_out.substr(0, r_out.size() - 4) : r_out;
+      RunRequest req{"oit", {{"scene", {r_scene}}, {"view", {r_view}}, {"technique", {r_technique}}, {"dump", {stem}}},
+                     parse_resolution(r_resolution), 1, 0};
+      for (const auto& s : r_sets) {
+        auto [k, v] = parse_set_option(s);
+        if (v.size() != 1) throw UsageError("render: --set " + k + " takes one value");
+        req.overrides[k] = v;
+      }
+      ropt.context = copt;
+      ropt.out = stem + ".csv";
+      ropt.progress = false;
+      int rc = run_experiments(registry, {req}, ropt);
+      std::fprintf(stderr, "oitbench: wrote %s.png, %s-diff8.png, %s-depth.png, %s-depth-histogram.csv, %s.csv\n",
+                   stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str());
+      return rc;
+    }
 
     ropt.context = copt;
     ropt.reps_given = run->count("--reps") > 0;

@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -58,7 +59,8 @@ std::string fmt(double v) {
 class OitCase final : public CaseInstance {
  public:
   OitCase(const ParamSet& p, CaseContext& ctx)
-      : ctx_(ctx),
+      : dump_(p.get("dump")),
+        ctx_(ctx),
         width_(ctx.width()),
         height_(ctx.height()),
         wrong_result_(ctx.fault() == "wrong-result"),
@@ -267,6 +269,7 @@ class OitCase final : public CaseInstance {
     m["rmse"] = fmt(err.rmse);
     m["bad_pixels"] = std::to_string(err.bad_pixels);
     m["visit_errors"] = std::to_string(err.visit_errors);
+    if (!dump_.empty()) write_images(rgba, ref, stats);
     if (err.visit_errors)
       problems.push_back(std::to_string(err.visit_errors) + " pixel(s) not resolved exactly once (covered) or resolved "
                          "though uncovered");
@@ -285,6 +288,36 @@ class OitCase final : public CaseInstance {
   }
 
  private:
+  // `oitbench render` / dump=PATH: PATH.png (the resolve), PATH-diff8.png (|image - reference| x 8),
+  // PATH-depth.png (depth complexity in false colour, black = empty, log scale up to the peak) and
+  // PATH-depth-histogram.csv (pixels per depth complexity).
+  void write_images(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats) const {
+    const size_t pixels = stats.depth.size();
+    std::vector<float> rgb(pixels * 3), diff(pixels * 3), depth(pixels * 3);
+    std::vector<size_t> histogram(stats.peak_depth + 1, 0);
+    const double peak = std::log2(1.0 + std::max(1u, stats.peak_depth));
+    for (size_t p = 0; p < pixels; ++p) {
+      for (int k = 0; k < 3; ++k) {
+        rgb[p * 3 + k] = rgba[p * 4 + 3] == 0.0f ? scene_.background[k] : rgba[p * 4 + k];
+        diff[p * 3 + k] = static_cast<float>(std::abs(rgb[p * 3 + k] - ref[p * 3 + k]));
+      }
+      ++histogram[stats.depth[p]];
+      // blue (1 fragment) -> green -> red (peak), on a log scale; black where nothing landed
+      float t = stats.depth[p] ? static_cast<float>(std::log2(1.0 + stats.depth[p]) / peak) : 0.0f;
+      glm::vec3 c = stats.depth[p] == 0 ? glm::vec3(0)
+                    : t < 0.5f          ? glm::mix(glm::vec3(0, 0, 1), glm::vec3(0, 1, 0), t * 2)
+                                        : glm::mix(glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), t * 2 - 1);
+      for (int k = 0; k < 3; ++k) depth[p * 3 + k] = c[k];
+    }
+    write_png(dump_ + ".png", rgb, width_, height_);
+    write_png(dump_ + "-diff8.png", diff, width_, height_, 8.0f);
+    write_png(dump_ + "-depth.png", depth, width_, height_);
+    std::ofstream csv(dump_ + "-depth-histogram.csv");
+    csv << "depth_complexity,pixels\n";
+    for (size_t d = 0; d < histogram.size(); ++d)
+      if (histogram[d]) csv << d << "," << histogram[d] << "\n";
+  }
+
   int capture() {
     target_.bind();
     glDisable(GL_DEPTH_TEST);
@@ -371,6 +404,7 @@ class OitCase final : public CaseInstance {
   }
   void end_resolve() { glDisable(GL_BLEND); }
 
+  std::string dump_;  // write the image, the x8 diff and the depth complexity (PNG, histogram CSV) here
   CaseContext ctx_;  // a copy: the runner's shader library outlives the case (intervals compile on demand)
   int width_, height_;
   bool wrong_result_;

@@ -200,3 +200,21 @@ TEST(Cli, PresetRunsItsGrid) {
 }
 
 }  // namespace oitbench::test
+
+namespace oitbench::test {
+
+TEST(Cli, RenderWritesTheImageDiffAndDepthComplexity) {
+  auto dir = temp_dir("render");
+  auto r = run_oitbench({"render", "--scene", "planes", "--view", "rev", "--technique", "BASE-IS", "--resolution",
+                         "64x64", "--set", "detail=small", "--out", (dir / "planes.png").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"planes.png", "planes-diff8.png", "planes-depth.png", "planes-depth-histogram.csv", "planes.csv"})
+    EXPECT_GT(std::filesystem::file_size(dir / f), 0u) << f;
+  auto hist = read_csv_rows(dir / "planes-depth-histogram.csv");
+  ASSERT_FALSE(hist.empty());
+  auto rows = read_csv_rows(dir / "planes.csv");
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(rows.back()["status"], "ok") << rows.back()["reason"];
+}
+
+}  // namespace oitbench::test
