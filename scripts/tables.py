@@ -117,7 +117,18 @@ TECHNIQUES = {
     "BMA-IS": _alloc_sort("bma", _IS, exclude=_NOT_IS),
     "BMA-IMS": _alloc_sort("bma", ("ims", "merge"), exclude=("rbs",)),
     "BMA-RBS-L": _alloc_sort("bma", ("rbs", "rbsl", "rbs l", "register"), exclude=("g", "global", "rbsg")),
-    # CUDA-IS, CUDA-IMS, CUDA-RBS-L: not measurable from GL; always "—".
+    # CUDA-IS, CUDA-IMS, CUDA-RBS-L: our CS-* rows stand in for them.
+    "CUDA-IS": T("oit", "cs is", "csis"),
+    "CUDA-IMS": T("oit", "cs ims", "csims"),
+    "CUDA-RBS-L": T("oit", "cs rbs l", "csrbsl"),
+    # Brüll 2018 tables 5.1 and 6.1-6.3: approximate techniques of the oit experiment (size = nodes).
+    "MLAB": T("oit", "mlab"),
+    "UMLAB": T("oit", "umlab"),
+    "AT": T("oit", "at"),
+    "UAT": T("oit", "uat"),
+    "LAAT": T("oit", "laat"),
+    "HAT": T("oit", "hat"),
+    "UHAT": T("oit", "uhat"),
 }
 
 # Which of our passes a paper metric is.
@@ -126,16 +137,18 @@ METRIC_PASSES = {
     "resolve_time": ("resolve", "sort", "composite", "resolve_sort"),
     "fullscreen_pass_time": ("resolve", "fullscreen", "composite", "blend"),
 }
-SIZE_COLUMNS = ("size", "n", "k", "max_frags", "layers", "depth", "fragments", "count", "array_size")
+SIZE_COLUMNS = ("size", "n", "nodes", "k", "max_frags", "layers", "depth", "fragments", "count", "array_size")
 SCENE_COLUMNS = ("scene",)
 VIEW_COLUMNS = ("view", "camera")
 GENERIC_SCENES = {"sort-bench", "all", ""}
 
 
 class PaperTable:
-    def __init__(self, name, source, table, title, baseline, kind="times"):
+    def __init__(self, name, source, table, title, baseline, kind="times", any_scene=False):
         self.name, self.source, self.table, self.title, self.baseline, self.kind = \
             name, source, table, title, baseline, kind
+        # The paper's scenes (powerplant, village, ...) are not shipped: compare with the median over ours.
+        self.any_scene = any_scene
 
 
 TABLES = [
@@ -148,6 +161,17 @@ TABLES = [
     PaperTable("bruell-A.4", "bruell2018-thesis", "A.4", "Brüll 2018 A.4: stencil-masked MLAB", "MLAB no stencil"),
     PaperTable("bruell-A.5", "bruell2018-thesis", "A.5", "Brüll 2018 A.5: stencil-masked UMLAB", "UMLAB no stencil"),
     PaperTable("bruell-4.1", "bruell2018-thesis", "4.1", "Brüll 2018 4.1: MLAB storage layouts", "MLAB ssbo"),
+    PaperTable("bruell-5.1", "bruell2018-thesis", "5.1", "Brüll 2018 5.1: MLAB vs UMLAB (ours: median over our scenes)",
+               "MLAB", any_scene=True),
+    PaperTable("bruell-6.1", "bruell2018-thesis", "6.1", "Brüll 2018 6.1: AT vs UAT (ours: median over our scenes)",
+               "AT", any_scene=True),
+    PaperTable("bruell-6.2", "bruell2018-thesis", "6.2", "Brüll 2018 6.2: AT vs LAAT (ours: median over our scenes)",
+               "AT", any_scene=True),
+    PaperTable("bruell-6.3", "bruell2018-thesis", "6.3", "Brüll 2018 6.3: HAT vs UHAT (ours: median over our scenes)",
+               "HAT", any_scene=True),
+    PaperTable("sintorn-poster", "sintorn-hair-poster", "results",
+               "Sintorn et al. poster: 256-slice radix sort of hair line segments (ours: the lines experiment)",
+               "", kind="lines"),
     PaperTable("knowles2014-1", "knowles2014-rbs", "1", "Knowles 2014 table 1: speedups over BASE-IS, all scenes",
                "BASE-IS", kind="summary"),
     PaperTable("knowles2014-2", "knowles2014-rbs", "2", "Knowles 2014 table 2: total and resolve times", "BASE-IS"),
@@ -279,9 +303,13 @@ def build_rows(table, paper_rows, ours):
     out = []
     if table.kind == "summary":
         return summary_rows(table, rows, ours)
+    if table.kind == "lines":
+        return lines_rows(table, rows, ours)
     for r in rows:
+        # Tables of scenes we do not ship compare with the median over our scenes.
+        our_scene, our_view = ("", "") if table.any_scene else (r["scene"], r["view"])
         paper_value = oitcsv.to_float(r["value"])
-        ours_ms, n = ours.lookup(r["technique"], r["size"], r["scene"], r["metric"], r["view"])
+        ours_ms, n = ours.lookup(r["technique"], r["size"], our_scene, r["metric"], our_view)
         base_tech = baseline_name(table, r["technique"])
         if table.kind == "speedups":
             paper_speedup = paper_value
@@ -291,9 +319,9 @@ def build_rows(table, paper_rows, ours):
             base_v = oitcsv.to_float(base["value"]) if base else None
             paper_speedup = base_v / paper_value if base_v and paper_value else None
         metric = metric_base(r["metric"]) if table.kind == "speedups" else r["metric"]
-        ours_base, _ = ours.lookup(base_tech, r["size"], r["scene"], metric, r["view"])
+        ours_base, _ = ours.lookup(base_tech, r["size"], our_scene, metric, our_view)
         if table.kind == "speedups":
-            ours_ms, n = ours.lookup(r["technique"], r["size"], r["scene"], metric, r["view"])
+            ours_ms, n = ours.lookup(r["technique"], r["size"], our_scene, metric, our_view)
         ours_speedup = ours_base / ours_ms if ours_base and ours_ms else None
         out.append({
             "table": table.name, "scene": r["scene"], "view": r["view"], "size": r["size"],
@@ -304,6 +332,38 @@ def build_rows(table, paper_rows, ours):
             "ours_cases": n,
         })
     return out
+
+
+def lines_rows(table, rows, ours):
+    """The poster's frame rates per model (segment count) beside ours: 1000 / total ms of the lines
+    experiment's slices technique at the same segment count, and our per-fragment exact OIT."""
+    out = []
+    segments = {r["scene"]: r["value"] for r in rows if r["metric"] == "line_segments"}
+    for r in rows:
+        if r["metric"] != "frame_rate":
+            continue
+        n = segments.get(r["scene"], "")
+        got = {}
+        for tech in ("slices", "exact"):
+            ms = [oitcsv.to_float(x["median_ms"]) for _, x, _, _ in ours.rows
+                  if x["experiment"] == "lines" and x["pass"] == "total" and x.get("technique") == tech
+                  and oitcsv.to_float(x.get("segments")) == oitcsv.to_float(n)]
+            got[tech] = 1000.0 / statistics.median(ms) if ms else None
+        out.append({"table": table.name, "scene": r["scene"], "view": "", "size": n, "technique": r["technique"],
+                    "metric": "frame_rate", "paper": oitcsv.to_float(r["value"]), "unit": "fps",
+                    "paper_speedup": None, "ours_ms": got["slices"], "ours_speedup": got["exact"],
+                    "ours_cases": int(got["slices"] is not None)})
+    return out
+
+
+def render_lines(table, rows):
+    lines = [f"### {table.title}", "",
+             "Poster: a GPU of its day. Ours: frames per second of the `lines` experiment (1000 / total median ms).", "",
+             "| model | segments | poster fps | ours fps (slices) | ours fps (per-fragment exact) |",
+             "|---|---:|---:|---:|---:|"]
+    for r in rows:
+        lines.append(f"| {r['scene']} | {r['size']} | {fmt(r['paper'])} | {fmt(r['ours_ms'])} | {fmt(r['ours_speedup'])} |")
+    return "\n".join(lines) + "\n"
 
 
 def summary_rows(table, rows, ours):
@@ -423,6 +483,8 @@ def main(argv=None):
             for r in rows:
                 w.writerow({k: ("" if v is None else (f"{v:.6g}" if isinstance(v, float) else v))
                             for k, v in r.items()})
+        elif t.kind == "lines":
+            print(render_lines(t, rows))
         else:
             print(render_markdown(t, rows, ours, paper_rows))
     return 0
