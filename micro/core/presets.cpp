@@ -1,3 +1,4 @@
+#include "core/text_position.hpp"
 #include "core/presets.hpp"
 
 #include <filesystem>
@@ -9,18 +10,6 @@
 namespace oitbench {
 
 namespace {
-std::string line_col(const std::string& text, size_t byte) {
-  size_t line = 1, col = 1;
-  for (size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
 
 std::string to_value(const nlohmann::json& v, const std::string& where) {
   if (v.is_string()) return v.get<std::string>();
@@ -60,7 +49,7 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    throw UsageError(path + ":" + line_col(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + e.what());
+    throw UsageError(path + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + e.what());
   }
   // nlohmann does not keep positions of values: name the JSON path of what is wrong instead.
   Preset p{name, "", path, {}};

@@ -1,3 +1,4 @@
+#include "core/text_position.hpp"
 #include "oit/scene.hpp"
 
 #include <algorithm>
@@ -16,18 +17,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string line_col_at(const std::string& text, size_t byte) {
-  size_t line = 1, col = 1;
-  for (size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
 
 // nlohmann keeps no positions for values: find the line of a JSON path by searching for its keys
 // in order ("/materials/glass/alpha" -> "materials", then "glass", then "alpha" after it).
@@ -51,7 +40,7 @@ class Node {
   [[noreturn]] void fail(const std::string& what) const {
     std::string ptr;
     for (const auto& k : keys_) ptr += "/" + k;
-    throw SceneError(path_ + ":" + line_col_at(text_, locate(text_, keys_)) + ": " + (ptr.empty() ? "/" : ptr) +
+    throw SceneError(path_ + ":" + line_column(text_, locate(text_, keys_)) + ": " + (ptr.empty() ? "/" : ptr) +
                      ": " + what);
   }
   Node child(const std::string& key) const {
@@ -341,7 +330,7 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     // e.byte is the 1-based offset of the character that broke the parse.
     std::string what = e.what();
     if (auto at = what.find("syntax error"); at != std::string::npos) what = what.substr(at);
-    throw SceneError(path + ":" + line_col_at(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + what);
+    throw SceneError(path + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + what);
   }
   Node root(j, path, text, {});
   root.expect_object({"name", "description", "background", "effects", "materials", "objects", "views", "model_roots"});
