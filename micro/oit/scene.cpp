@@ -1,4 +1,3 @@
-#include "core/text_position.hpp"
 #include "oit/scene.hpp"
 
 #include <algorithm>
@@ -10,6 +9,8 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+
+#include "core/text_position.hpp"
 
 namespace oitbench::oit {
 
