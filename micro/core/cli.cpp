@@ -165,7 +165,7 @@ int run_cli(int argc, char** argv) {
   render->add_option("--scene", r_scene, "Scene name (scenes/NAME.json)");
   render->add_option("--view", r_view, "View named in the scene file");
   render->add_option("--technique", r_technique, "Technique (see: oitbench list, experiment oit)");
-  render->add_option("--out,-o", r_out, "Image file (.png); beside it: -diff8.png, -depth.png, -depth-histogram.csv, .csv");
+  render->add_option("--out,-o", r_out, "Image file (.png); beside it: .pfm (float), -diff8.png, -depth.png, -depth-histogram.csv, .csv");
   render->add_option("--resolution", r_resolution, "WIDTHxHEIGHT");
   render->add_option("--set", r_sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8)")->take_all();
 
@@ -195,8 +195,8 @@ int run_cli(int argc, char** argv) {
       ropt.out = stem + ".csv";
       ropt.progress = false;
       int rc = run_experiments(registry, {req}, ropt);
-      std::fprintf(stderr, "oitbench: wrote %s.png, %s-diff8.png, %s-depth.png, %s-depth-histogram.csv, %s.csv\n",
-                   stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str());
+      std::fprintf(stderr, "oitbench: wrote %s.png, %s.pfm, %s-diff8.png, %s-depth.png, %s-depth-histogram.csv, %s.csv\n",
+                   stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str());
       return rc;
     }
 

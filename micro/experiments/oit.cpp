@@ -288,7 +288,7 @@ class OitCase final : public CaseInstance {
   }
 
  private:
-  // `oitbench render` / dump=PATH: PATH.png (the resolve), PATH-diff8.png (|image - reference| x 8),
+  // `oitbench render` / dump=PATH: PATH.png and PATH.pfm (the resolve, 8-bit and float), PATH-diff8.png (|image - reference| x 8),
   // PATH-depth.png (depth complexity in false colour, black = empty, log scale up to the peak) and
   // PATH-depth-histogram.csv (pixels per depth complexity).
   void write_images(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats) const {
@@ -312,6 +312,10 @@ class OitCase final : public CaseInstance {
     write_png(dump_ + ".png", rgb, width_, height_);
     write_png(dump_ + "-diff8.png", diff, width_, height_, 8.0f);
     write_png(dump_ + "-depth.png", depth, width_, height_);
+    // PATH.pfm: the resolve in float (Portable Float Map: rows bottom to top, like GL; -1 = little endian).
+    std::ofstream pfm(dump_ + ".pfm", std::ios::binary);
+    pfm << "PF\n" << width_ << " " << height_ << "\n-1.0\n";
+    pfm.write(reinterpret_cast<const char*>(rgb.data()), static_cast<std::streamsize>(rgb.size() * sizeof(float)));
     std::ofstream csv(dump_ + "-depth-histogram.csv");
     csv << "depth_complexity,pixels\n";
     for (size_t d = 0; d < histogram.size(); ++d)

@@ -208,8 +208,9 @@ TEST(Cli, RenderWritesTheImageDiffAndDepthComplexity) {
   auto r = run_oitbench({"render", "--scene", "planes", "--view", "rev", "--technique", "BASE-IS", "--resolution",
                          "64x64", "--set", "detail=small", "--out", (dir / "planes.png").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"planes.png", "planes-diff8.png", "planes-depth.png", "planes-depth-histogram.csv", "planes.csv"})
+  for (const char* f : {"planes.png", "planes.pfm", "planes-diff8.png", "planes-depth.png", "planes-depth-histogram.csv", "planes.csv"})
     EXPECT_GT(std::filesystem::file_size(dir / f), 0u) << f;
+  EXPECT_EQ(std::filesystem::file_size(dir / "planes.pfm"), std::string("PF\n64 64\n-1.0\n").size() + 64 * 64 * 12);
   auto hist = read_csv_rows(dir / "planes-depth-histogram.csv");
   ASSERT_FALSE(hist.empty());
   auto rows = read_csv_rows(dir / "planes.csv");
