@@ -153,6 +153,21 @@ void insert_at(std::vector<Node>& s, int n, float a, float z, bool height, bool 
   for (int i = 0; i < n; ++i) s[i] = at_node(t[i], d[i]);
 }
 
+// UAT's and LAAT's rect metric over the nodes in depth order `seq[0..n]` (relative transmittances t,
+// depths d): the position r >= 1 whose merge into r - 1 loses the least area under the visibility curve.
+int least_rect_area(const std::vector<int>& seq, int n, const std::vector<float>& t, const std::vector<float>& d) {
+  float before = t[seq[0]];
+  int r = 1;
+  float best = kDepthEmpty;
+  for (int i = 1; i <= n; ++i) {
+    float after = before * t[seq[i]];
+    float e = (d[seq[i]] - d[seq[i - 1]]) * (before - after);
+    if (e < best) best = e, r = i;
+    before = after;
+  }
+  return r;
+}
+
 void insert_uat(std::vector<Node>& s, int n, float a, float z) {
   std::vector<float> t(n + 1), d(n + 1);
   t[n] = a;
@@ -174,15 +189,7 @@ void insert_uat(std::vector<Node>& s, int n, float a, float z) {
       int x = order[j - 1], y = order[j];
       if (d[x] > d[y] || (d[x] == d[y] && x > y)) order[j - 1] = y, order[j] = x;
     }
-  float before = t[order[0]];
-  int r = 1;
-  float best = kDepthEmpty;
-  for (int i = 1; i <= n; ++i) {
-    float after = before * t[order[i]];
-    float e = (d[order[i]] - d[order[i - 1]]) * (before - after);
-    if (e < best) best = e, r = i;
-    before = after;
-  }
+  int r = least_rect_area(order, n, t, d);
   int remove = order[r], compress = order[r - 1];
   float tc = t[compress] * t[remove];
   if (compress == n) {
@@ -250,15 +257,7 @@ void insert_laat(std::vector<Node>& s, int n, float a, float z) {
   seq[k] = n;
   int len = cnt + 1, new_slot = cnt;
   if (cnt == n) {
-    float before = t[seq[0]];
-    int r = 1;
-    float best = kDepthEmpty;
-    for (int i = 1; i <= n; ++i) {
-      float after = before * t[seq[i]];
-      float e = (d[seq[i]] - d[seq[i - 1]]) * (before - after);
-      if (e < best) best = e, r = i;
-      before = after;
-    }
+    int r = least_rect_area(seq, n, t, d);
     t[seq[r - 1]] *= t[seq[r]];
     new_slot = seq[r];
     for (int i = r; i < n; ++i) seq[i] = seq[i + 1];
