@@ -441,7 +441,7 @@ void write_png(const std::string& path, const std::vector<float>& rgb, int width
 
 namespace {
 
-class ApproxCase final : public CaseInstance {
+class ApproxCase final : public OitCase {
  public:
   ApproxCase(const ParamSet& p, CaseContext& ctx)
       : width_(ctx.width()),
@@ -527,6 +527,13 @@ class ApproxCase final : public CaseInstance {
                          scene_.background.g, scene_.background.b);
     }
   }
+
+  void set_view_projection(const glm::mat4& view_proj) override {
+    for (const gl::Program* prog : {&insert_, &blend_})
+      if (*prog) set_view_proj(*prog, view_proj);
+  }
+  GLuint result_texture() override { return out_.color_texture(); }
+  unsigned max_frags() const override { return arrays_ ? static_cast<unsigned>(settings_.nodes) : 0; }
 
   void run(PassTimer& timer) override {
     using T = ApproxTechnique;
@@ -724,7 +731,7 @@ class ApproxCase final : public CaseInstance {
 
 }  // namespace
 
-std::unique_ptr<CaseInstance> make_approx_case(const ParamSet& p, CaseContext& ctx) {
+std::unique_ptr<OitCase> make_approx_case(const ParamSet& p, CaseContext& ctx) {
   return std::make_unique<ApproxCase>(p, ctx);
 }
 

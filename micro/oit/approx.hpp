@@ -14,6 +14,7 @@
 
 #include "core/registry.hpp"
 #include "oit/fragment_lists.hpp"
+#include "oit/oit_case.hpp"
 
 namespace oitbench::oit {
 
@@ -47,7 +48,7 @@ ApproxError approx_error(const std::vector<float>& rgb, const std::vector<double
 std::vector<ParamSpec> approx_params();
 
 // The oit experiment's case for an approximate technique (parameters as in micro/experiments/oit.cpp).
-std::unique_ptr<CaseInstance> make_approx_case(const ParamSet& p, CaseContext& ctx);
+std::unique_ptr<OitCase> make_approx_case(const ParamSet& p, CaseContext& ctx);
 
 // 8-bit sRGB-less PNG of an RGB float image (rows bottom-up as GL reads them), values * scale.
 void write_png(const std::string& path, const std::vector<float>& rgb, int width, int height, float scale = 1.0f);

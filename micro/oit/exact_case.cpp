@@ -1,0 +1,462 @@
+// Exact order-independent transparency: per-pixel linked lists captured from a scene file and
+// resolved by the sorts of Knowles, Leach, Zambetta 2013 (BMA) and 2014 (register-based block
+// sort, RBS), on the GPU or on the CPU (CPU-NATIVE). Validated against the CPU reference
+// compositor working on the same fragments read back from the GPU.
+#include "oit/oit_case.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "core/render_target.hpp"
+#include "oit/approx.hpp"
+#include "oit/bma_auto.hpp"
+#include "oit/compute_resolve.hpp"
+#include "oit/fragment_lists.hpp"
+#include "oit/gpu_mesh.hpp"
+#include "oit/reference.hpp"
+#include "oit/resolve_sort.hpp"
+#include "oit/scene.hpp"
+
+namespace oitbench::oit {
+
+namespace {
+
+// 2/255: a fragment's colour is packed to RGBA8 for both the GPU and the reference, so what is
+// left is float vs double blending and the order of equal-depth fragments.
+constexpr double kTolerance = 2.0 / 255.0;
+constexpr int kFirstInterval = 8;  // BMA intervals: 1-8, 9-16, 17-32, ... (Knowles 2014, section 4)
+
+unsigned next_pow2(unsigned v) {
+  unsigned p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+class ExactCase final : public OitCase {
+ public:
+  ExactCase(const ParamSet& p, CaseContext& ctx)
+      : dump_(p.get("dump")),
+        ctx_(ctx),
+        width_(ctx.width()),
+        height_(ctx.height()),
+        wrong_result_(ctx.fault() == "wrong-result"),
+        technique_(p.get("technique")),
+        bma_(technique_.starts_with("BMA-")),
+        native_(technique_ == "CPU-NATIVE"),
+        compute_(technique_.starts_with("CS-")),
+        auto_(technique_ == "BMA-AUTO"),
+        use_auto_cache_(p.get("bma_auto_cache") == "on"),
+        block_(static_cast<int>(p.get_int("block"))),
+        scene_(load_scene(p.get("scene"))),
+        target_(ctx.width(), ctx.height(), GL_RGBA32F, true) {
+    const View& view = scene_.view(p.get("view"));
+    Mesh mesh = build_mesh(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full);
+    mesh_ = std::make_unique<GpuMesh>(mesh);
+    view_proj_ = view_projection(view, mesh, static_cast<float>(ctx.width()) / ctx.height());
+    size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
+    long long init = p.get_int("initial_pool");
+    lists_ = std::make_unique<FragmentLists>(ctx.width(), ctx.height(), init > 0 ? static_cast<size_t>(init) : pixels * 4,
+                                             bma_);
+    Defines capture_defines;
+    if (bma_) capture_defines.push_back({"STORAGE_COUNTS", ""});
+    capture_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+                         capture_defines);
+    glProgramUniformMatrix4fv(capture_.get(), glGetUniformLocation(capture_.get(), "viewProj"), 1, GL_FALSE,
+                              &view_proj_[0][0]);
+
+    // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
+    // (the next power of two at or above it, as the paper does) before anything is compiled.
+    overflow_rerenders_ += capture();
+    ListStats stats = list_stats(lists_->read_back());
+    long long forced = p.get_int("max_frags");
+    max_frags_ = forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(stats.peak_depth));
+    if (native_) return;
+    if (compute_) {
+      auto [gx, gy] = parse_group(p.get("cs_group"));
+      compute_resolve_ = std::make_unique<ComputeResolve>(
+          ctx, sort_defines(sort_of_technique(technique_), max_frags_, static_cast<unsigned>(block_)),
+          scene_.background, gx, gy);
+      return;
+    }
+    if (bma_) {
+      count_ = ctx.build({{GL_COMPUTE_SHADER, "oit/bma_count.comp"}}, {});
+      mask_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/bma_mask.frag"}}, {});
+      histogram_ = gl::make_buffer();
+      glNamedBufferStorage(histogram_.get(), 32 * sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
+      for (unsigned top = kFirstInterval; top <= max_frags_; top *= 2) interval_tops_.push_back(top);
+      // Compile the intervals this view uses now (compile time is not frame time); others on demand.
+      std::vector<bool> used(interval_tops_.size(), false);
+      for (unsigned d : stats.depth)
+        if (d > 0) used[interval_of(d)] = true;
+      interval_programs_.resize(interval_tops_.size());
+      if (auto_) calibrate_bma_auto();
+      for (size_t i = 0; i < used.size(); ++i)
+        if (used[i]) interval_program(i);
+    } else {
+      base_ = build_resolve(sort_of_technique(technique_), max_frags_);
+    }
+  }
+
+  void set_view_projection(const glm::mat4& view_proj) override {
+    view_proj_ = view_proj;
+    glProgramUniformMatrix4fv(capture_.get(), glGetUniformLocation(capture_.get(), "viewProj"), 1, GL_FALSE,
+                              &view_proj_[0][0]);
+  }
+  GLuint result_texture() override {
+    if (native_ && !native_out_.empty())  // CPU-NATIVE's image lives on the CPU: upload it for display
+      glTextureSubImage2D(target_.color_texture(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, native_out_.data());
+    return target_.color_texture();
+  }
+  const FragmentLists* fragments() const override { return lists_.get(); }
+  unsigned max_frags() const override { return max_frags_; }
+
+  void run(PassTimer& timer) override {
+    target_.bind();
+    {
+      auto t = timer.pass("capture");
+      auto start = std::chrono::steady_clock::now();
+      overflow_rerenders_ += capture();
+      capture_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    if (native_) {
+      {
+        auto t = timer.pass("readback");
+        host_ = lists_->read_back();
+      }
+      auto t = timer.pass("resolve");
+      resolve_native(host_, scene_.background, 0, wrong_result_, native_out_);
+      return;
+    }
+    if (compute_) {
+      auto t = timer.pass("resolve");
+      compute_resolve_->run(*lists_, target_);
+      return;
+    }
+    if (!bma_) {
+      auto t = timer.pass("resolve");
+      begin_resolve();
+      draw_resolve(base_);
+      end_resolve();
+      return;
+    }
+    std::vector<unsigned> pixels;
+    {
+      auto t = timer.pass("count");
+      pixels = count_intervals();
+    }
+    {
+      auto t = timer.pass("mask");
+      mask_intervals(pixels);
+    }
+    auto t = timer.pass("resolve");
+    begin_resolve();
+    glEnable(GL_STENCIL_TEST);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    intervals_run_ = 0;
+    for (size_t i = 0; i < interval_tops_.size(); ++i) {
+      if (!pixels[i]) continue;  // no pixels: the interval's program never runs
+      glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
+      draw_resolve(interval_program(i));
+      ++intervals_run_;
+    }
+    glDisable(GL_STENCIL_TEST);
+    end_resolve();
+    interval_pixels_ = pixels;
+  }
+
+  // BMA's count pass: pixels per depth interval (pixels deeper than MAX_FRAGS in the last one).
+  std::vector<unsigned> count_intervals() {
+    std::vector<unsigned> hist(32, 0);
+    glNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
+    lists_->bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, histogram_.get());
+    glUseProgram(count_.get());
+    glDispatchCompute((width_ + 7) / 8, (height_ + 7) / 8, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
+    // Pixels deeper than MAX_FRAGS belong to the last interval (truncated there, and counted).
+    std::vector<unsigned> pixels(interval_tops_.size(), 0);
+    for (size_t i = 0; i < hist.size(); ++i) pixels[std::min(i, pixels.size() - 1)] += hist[i];
+    return pixels;
+  }
+
+  // BMA's mask pass: stencil value i + 1 on the pixels of interval i.
+  void mask_intervals(const std::vector<unsigned>& pixels) {
+    {
+      glClearNamedFramebufferiv(target_.framebuffer(), GL_STENCIL, 0, std::array<GLint, 1>{0}.data());
+      glEnable(GL_STENCIL_TEST);
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+      glUseProgram(mask_.get());
+      lists_->bind();
+      for (size_t i = 0; i < interval_tops_.size(); ++i) {
+        if (!pixels[i]) continue;
+        unsigned lo = i == 0 ? 1 : interval_tops_[i] / 2 + 1;
+        unsigned hi = i + 1 == interval_tops_.size() ? 0xFFFFFFFFu : interval_tops_[i];
+        glUniform1ui(glGetUniformLocation(mask_.get(), "lo"), lo);
+        glUniform1ui(glGetUniformLocation(mask_.get(), "hi"), hi);
+        glStencilFunc(GL_ALWAYS, static_cast<GLint>(i + 1), 0xFF);
+        quad_.draw();
+      }
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glDisable(GL_STENCIL_TEST);
+    }
+  }
+
+  Validation validate() override {
+    Validation v;
+    HostLists host = native_ ? std::move(host_) : lists_->read_back();
+    ListStats stats = list_stats(host);
+    auto& m = v.metrics;
+    m["polygons"] = std::to_string(mesh_->polygons());
+    m["total_fragments"] = std::to_string(stats.total_fragments);
+    m["peak_depth"] = std::to_string(stats.peak_depth);
+    m["mean_depth"] = fmt(stats.mean_depth);
+    m["max_frags"] = std::to_string(max_frags_);
+    m["node_pool"] = std::to_string(lists_->pool());
+    // Nodes (8-byte fragment + 4-byte next) plus the per-pixel heads (and BMA's counts).
+    m["node_pool_bytes"] = std::to_string(lists_->pool() * 12 + stats.depth.size() * 4 * (bma_ ? 2 : 1));
+    if (auto_) {
+      m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
+      m["bma_auto_source"] = auto_choice_.source;
+      m["bma_auto_timings"] = auto_choice_.timings;
+    }
+    m["overflow_rerenders"] = std::to_string(overflow_rerenders_);
+    size_t truncated = 0;
+    for (unsigned d : stats.depth) truncated += d > max_frags_;
+    m["truncated_pixels"] = std::to_string(truncated);
+    if (!capture_ms_.empty()) {
+      auto ms = capture_ms_;
+      std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+      m["fragments_per_s"] = fmt(stats.total_fragments / (ms[ms.size() / 2] / 1000.0));
+    }
+    if (bma_) {
+      std::string s;
+      for (size_t i = 0; i < interval_tops_.size(); ++i)
+        if (i < interval_pixels_.size() && interval_pixels_[i])
+          s += (s.empty() ? "" : " ") + std::to_string(interval_tops_[i]) + ":" + std::to_string(interval_pixels_[i]);
+      m["bma_intervals"] = s;
+    }
+    std::vector<std::string> problems;
+    if (!stats.error.empty()) problems.push_back(stats.error);
+    if (stats.total_fragments != lists_->fragments())
+      problems.push_back("the lists hold " + std::to_string(stats.total_fragments) + " fragments but " +
+                         std::to_string(lists_->fragments()) + " were captured (fragments lost)");
+    if (bma_) {
+      size_t wrong = 0;
+      for (size_t p = 0; p < stats.depth.size(); ++p) wrong += host.counts[p] != stats.depth[p];
+      if (wrong) problems.push_back(std::to_string(wrong) + " pixel(s) whose BMA count differs from their list length");
+    }
+    m["tied_pixels"] = std::to_string(stats.tied_pixels);
+    if (truncated && !native_)
+      problems.push_back(std::to_string(truncated) + " pixel(s) deeper than MAX_FRAGS=" + std::to_string(max_frags_) +
+                         " were truncated");
+    std::vector<float> rgba = native_ ? native_out_ : target_.read_rgba32f();
+    auto ref = composite_reference(host, scene_.background);
+    auto err = compare_with_reference(rgba, ref, stats, scene_.background, width_, kTolerance);
+    m["max_abs_error"] = fmt(err.max_abs_error);
+    m["rmse"] = fmt(err.rmse);
+    m["bad_pixels"] = std::to_string(err.bad_pixels);
+    m["visit_errors"] = std::to_string(err.visit_errors);
+    if (!dump_.empty()) write_images(rgba, ref, stats);
+    if (err.visit_errors)
+      problems.push_back(std::to_string(err.visit_errors) + " pixel(s) not resolved exactly once (covered) or resolved "
+                         "though uncovered");
+    if (err.bad_pixels)
+      problems.push_back(std::to_string(err.bad_pixels) + " pixel(s) differ from the CPU reference by more than 2/255; first: " +
+                         err.first_bad);
+    // llvmpipe ends a shader invocation's loops after 65535 iterations in total (gallivm's
+    // LP_MAX_TGSI_LOOP_ITERATIONS): deep reverse insertion sorts and wide k-way merges pass it.
+    double loop_steps = std::max(0.5 * stats.peak_depth * stats.peak_depth, static_cast<double>(stats.peak_depth) * max_frags_ / std::max(1, block_));
+    if (!problems.empty() && !native_ && ctx_.gl().is_software_renderer() && loop_steps > 65535)
+      problems.push_back("likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
+                         "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" + fmt(loop_steps) + " per pixel");
+    v.valid = problems.empty();
+    for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
+    return v;
+  }
+
+ private:
+  // `oitbench render` / dump=PATH: PATH.png and PATH.pfm (the resolve, 8-bit and float), PATH-diff8.png (|image - reference| x 8),
+  // PATH-depth.png (depth complexity in false colour, black = empty, log scale up to the peak) and
+  // PATH-depth-histogram.csv (pixels per depth complexity).
+  void write_images(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats) const {
+    const size_t pixels = stats.depth.size();
+    std::vector<float> rgb(pixels * 3), diff(pixels * 3), depth(pixels * 3);
+    std::vector<size_t> histogram(stats.peak_depth + 1, 0);
+    const double peak = std::log2(1.0 + std::max(1u, stats.peak_depth));
+    for (size_t p = 0; p < pixels; ++p) {
+      for (int k = 0; k < 3; ++k) {
+        rgb[p * 3 + k] = rgba[p * 4 + 3] == 0.0f ? scene_.background[k] : rgba[p * 4 + k];
+        diff[p * 3 + k] = static_cast<float>(std::abs(rgb[p * 3 + k] - ref[p * 3 + k]));
+      }
+      ++histogram[stats.depth[p]];
+      // blue (1 fragment) -> green -> red (peak), on a log scale; black where nothing landed
+      float t = stats.depth[p] ? static_cast<float>(std::log2(1.0 + stats.depth[p]) / peak) : 0.0f;
+      glm::vec3 c = stats.depth[p] == 0 ? glm::vec3(0)
+                    : t < 0.5f          ? glm::mix(glm::vec3(0, 0, 1), glm::vec3(0, 1, 0), t * 2)
+                                        : glm::mix(glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), t * 2 - 1);
+      for (int k = 0; k < 3; ++k) depth[p * 3 + k] = c[k];
+    }
+    write_png(dump_ + ".png", rgb, width_, height_);
+    write_png(dump_ + "-diff8.png", diff, width_, height_, 8.0f);
+    write_png(dump_ + "-depth.png", depth, width_, height_);
+    // PATH.pfm: the resolve in float (Portable Float Map: rows bottom to top, like GL; -1 = little endian).
+    std::ofstream pfm(dump_ + ".pfm", std::ios::binary);
+    pfm << "PF\n" << width_ << " " << height_ << "\n-1.0\n";
+    pfm.write(reinterpret_cast<const char*>(rgb.data()), static_cast<std::streamsize>(rgb.size() * sizeof(float)));
+    std::ofstream csv(dump_ + "-depth-histogram.csv");
+    csv << "depth_complexity,pixels\n";
+    for (size_t d = 0; d < histogram.size(); ++d)
+      if (histogram[d]) csv << d << "," << histogram[d] << "\n";
+  }
+
+  int capture() {
+    target_.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    int r = lists_->capture(capture_.get(), [&] { mesh_->draw(); });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    return r;
+  }
+
+  size_t interval_of(unsigned depth) const {
+    size_t i = 0;
+    while (i + 1 < interval_tops_.size() && depth > interval_tops_[i]) ++i;
+    return i;
+  }
+
+  gl::Program build_resolve(ResolveSort sort, unsigned max_frags) {
+    Defines d = sort_defines(sort, max_frags, static_cast<unsigned>(block_));
+    auto prog = ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}}, d);
+    glProgramUniform3f(prog.get(), glGetUniformLocation(prog.get(), "background"), scene_.background.r,
+                       scene_.background.g, scene_.background.b);
+    glProgramUniform1i(prog.get(), glGetUniformLocation(prog.get(), "zero"), 0);
+    return prog;
+  }
+
+  const gl::Program& interval_program(size_t i) {
+    if (!interval_programs_[i]) interval_programs_[i] = build_resolve(interval_sort(i), interval_tops_[i]);
+    return *interval_programs_[i];
+  }
+
+  ResolveSort interval_sort(size_t i) const {
+    if (auto_) return i < auto_choice_.sort.size() && auto_choice_.sort[i] ? *auto_choice_.sort[i] : ResolveSort::IS;
+    return sort_of_technique(technique_);
+  }
+
+  // BMA-AUTO (oit/bma_auto.hpp): each used interval's sort, from the cache or timed here on the
+  // lists of the first capture under that interval's stencil mask. Runs inside prepare, so it is
+  // counted in compile_ms and never in a timed pass.
+  void calibrate_bma_auto() {
+    target_.bind();
+    std::vector<unsigned> pixels = count_intervals();
+    HostLists host = lists_->read_back();
+    ListStats stats = list_stats(host);
+    std::vector<double> ref;  // computed on the first calibrated candidate only
+    SortChoiceCache cache(bma_auto_cache_path());
+    constexpr int kReps = 2;
+    auto measure = [&](size_t i, ResolveSort sort) {
+      gl::Program prog = build_resolve(sort, interval_tops_[i]);
+      mask_intervals(pixels);
+      std::vector<double> ms;
+      for (int r = 0; r <= kReps; ++r) {  // r == 0: the warm-up that pays the JIT
+        auto start = std::chrono::steady_clock::now();
+        begin_resolve();
+        glEnable(GL_STENCIL_TEST);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        glStencilFunc(GL_EQUAL, static_cast<GLint>(i + 1), 0xFF);
+        draw_resolve(prog);
+        glDisable(GL_STENCIL_TEST);
+        end_resolve();
+        glFinish();
+        if (r) ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      }
+      std::sort(ms.begin(), ms.end());
+      if (ref.empty()) ref = composite_reference(host, scene_.background);
+      unsigned lo = i == 0 ? 1 : interval_tops_[i] / 2 + 1;
+      unsigned hi = i + 1 == interval_tops_.size() ? max_frags_ : interval_tops_[i];
+      bool valid = interval_matches_reference(target_.read_rgba32f(), ref, stats, lo, hi, kTolerance);
+      return CandidateResult{ms[ms.size() / 2], valid};
+    };
+    auto_choice_ = choose_interval_sorts(interval_tops_, pixels, interval_orders(host, stats, interval_tops_), ctx_.gl(),
+                                         static_cast<unsigned>(block_), cache, use_auto_cache_, measure);
+  }
+
+  void begin_resolve() {
+    const float clear[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(target_.framebuffer(), GL_COLOR, 0, clear);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);  // alpha accumulates the number of resolves of each pixel
+    lists_->bind();
+  }
+  void draw_resolve(const gl::Program& prog) {
+    glUseProgram(prog.get());
+    quad_.draw();
+  }
+  void end_resolve() { glDisable(GL_BLEND); }
+
+  std::string dump_;  // write the image, the x8 diff and the depth complexity (PNG, histogram CSV) here
+  CaseContext ctx_;  // a copy: the runner's shader library outlives the case (intervals compile on demand)
+  int width_, height_;
+  bool wrong_result_;
+  std::string technique_;
+  bool bma_, native_, compute_, auto_, use_auto_cache_;
+  int block_;
+  SceneDesc scene_;
+  RenderTarget target_;
+  FullscreenTriangle quad_;
+  std::unique_ptr<GpuMesh> mesh_;
+  glm::mat4 view_proj_;
+  std::unique_ptr<FragmentLists> lists_;
+  gl::Program capture_, base_, count_, mask_;
+  gl::Buffer histogram_;
+  std::vector<unsigned> interval_tops_, interval_pixels_;
+  std::vector<std::optional<gl::Program>> interval_programs_;
+  std::unique_ptr<ComputeResolve> compute_resolve_;
+  BmaAutoChoice auto_choice_;
+  unsigned max_frags_ = 0;
+  int overflow_rerenders_ = 0, intervals_run_ = 0;
+  std::vector<double> capture_ms_;
+  HostLists host_;
+  std::vector<float> native_out_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& exact_technique_names() {
+  static const std::vector<std::string> names = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS",   "BMA-IMS", "BMA-RBS-L",
+                                                 "CPU-NATIVE", "CS-IS", "CS-IMS",   "CS-RBS-L", "RBS-G",   "BMA-AUTO"};
+  return names;
+}
+
+std::unique_ptr<OitCase> make_exact_case(const ParamSet& p, CaseContext& ctx) {
+  return std::make_unique<ExactCase>(p, ctx);
+}
+
+std::unique_ptr<OitCase> make_oit_case(const ParamSet& p, CaseContext& ctx) {
+  try {
+    if (is_approx_technique(p.get("technique"))) return make_approx_case(p, ctx);
+    return make_exact_case(p, ctx);
+  } catch (const SceneError& e) {
+    throw std::runtime_error(std::string("oit: ") + e.what());
+  }
+}
+
+}  // namespace oitbench::oit
