@@ -242,40 +242,76 @@ void gen_smoke(Builder& b, const json& p, const Material& m, const View& view) {
   }
 }
 
-// A model file read with assimp (triangulated, node transforms applied), scaled into the unit
-// sphere, repeated on a `grid` x `grid` x `grid` lattice `spacing` apart (an engine grid gives a deep
-// scene from a small model). Each triangle is a primitive; colours mix the scene material with the
-// model's diffuse colours.
+// Three per-axis values from a number (the same on every axis) or an array of three numbers.
+glm::vec3 per_axis(const json& p, const char* key, float fallback) {
+  if (!p.contains(key)) return glm::vec3(fallback);
+  const json& v = p[key];
+  if (v.is_array()) return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
+  return glm::vec3(v.get<float>());
+}
+
+// A model file read with assimp (triangulated, node transforms applied: a mesh placed by several
+// nodes appears once per placement), scaled so its bounding box's diagonal is 2, repeated on a
+// `grid` lattice (x, y, z counts) `spacing` apart: the engine grid gives a deep CAD scene from a
+// small model. Each triangle is a primitive. A triangle's colour mixes the scene material with the
+// model material's diffuse colour (`colour_mix`: the model's share); its alpha is the scene
+// material's, or `alpha_by_material[model material name]`, or with `model_opacity` the model's own
+// opacity where the file gives one below 1 (the house's glass). Materials named in
+// `exclude_materials` are left out (before the bounding box is taken).
 void gen_model(Builder& b, const json& p, const Material& m, const std::string& file) {
   Assimp::Importer importer;
   const aiScene* sc = importer.ReadFile(file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
                                                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (!sc || !sc->mRootNode) throw SceneError(file + ": assimp could not read the model: " + importer.GetErrorString());
+  auto material_name = [&](unsigned i) {
+    aiString name;
+    if (sc->mMaterials && i < sc->mNumMaterials) sc->mMaterials[i]->Get(AI_MATKEY_NAME, name);
+    return std::string(name.C_Str());
+  };
+  std::vector<std::string> excluded;
+  if (p.contains("exclude_materials"))
+    for (const auto& e : p["exclude_materials"]) excluded.push_back(e.get<std::string>());
+  auto included = [&](const aiMesh* mesh) {
+    return (mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) &&
+           std::find(excluded.begin(), excluded.end(), material_name(mesh->mMaterialIndex)) == excluded.end();
+  };
   glm::vec3 lo(1e30f), hi(-1e30f);
-  for (unsigned i = 0; i < sc->mNumMeshes; ++i)
+  for (unsigned i = 0; i < sc->mNumMeshes; ++i) {
+    if (!included(sc->mMeshes[i])) continue;
     for (unsigned v = 0; v < sc->mMeshes[i]->mNumVertices; ++v) {
       const aiVector3D& q = sc->mMeshes[i]->mVertices[v];
       lo = glm::min(lo, glm::vec3(q.x, q.y, q.z));
       hi = glm::max(hi, glm::vec3(q.x, q.y, q.z));
     }
-  if (lo.x > hi.x) throw SceneError(file + ": the model has no vertices");
+  }
+  if (lo.x > hi.x) throw SceneError(file + ": the model has no triangles (after exclude_materials)");
   glm::vec3 centre = (lo + hi) * 0.5f;
   float scale = 2.0f / std::max(glm::length(hi - lo), 1e-6f);
-  int grid = std::max(1, static_cast<int>(param(p, "grid", 1)));
-  float spacing = static_cast<float>(param(p, "spacing", 1.0));
-  float half = 0.5f * spacing * static_cast<float>(grid - 1);
-  for (int gz = 0; gz < grid; ++gz)
-    for (int gy = 0; gy < grid; ++gy)
-      for (int gx = 0; gx < grid; ++gx) {
-        glm::vec3 offset(gx * spacing - half, gy * spacing - half, gz * spacing - half);
+  glm::ivec3 grid = glm::max(glm::ivec3(per_axis(p, "grid", 1.0f)), glm::ivec3(1));
+  glm::vec3 spacing = per_axis(p, "spacing", 1.0f);
+  float mix = static_cast<float>(param(p, "colour_mix", 0.5));
+  bool model_opacity = p.value("model_opacity", false);
+  const json alpha_by_material = p.value("alpha_by_material", json::object());
+  glm::vec3 half = 0.5f * spacing * glm::vec3(grid - 1);
+  for (int gz = 0; gz < grid.z; ++gz)
+    for (int gy = 0; gy < grid.y; ++gy)
+      for (int gx = 0; gx < grid.x; ++gx) {
+        glm::vec3 offset = glm::vec3(gx, gy, gz) * spacing - half;
         for (unsigned i = 0; i < sc->mNumMeshes; ++i) {
           const aiMesh* mesh = sc->mMeshes[i];
-          if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+          if (!included(mesh)) continue;
           glm::vec3 diffuse(1.0f);
-          aiColor4D d;
-          if (sc->mMaterials && aiGetMaterialColor(sc->mMaterials[mesh->mMaterialIndex], AI_MATKEY_COLOR_DIFFUSE, &d) == AI_SUCCESS)
-            diffuse = glm::vec3(d.r, d.g, d.b);
-          glm::vec4 c(glm::mix(m.colour, diffuse, 0.5f), m.alpha);
+          float alpha = m.alpha;
+          if (sc->mMaterials && mesh->mMaterialIndex < sc->mNumMaterials) {
+            const aiMaterial* mat = sc->mMaterials[mesh->mMaterialIndex];
+            aiColor4D d;
+            if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &d) == AI_SUCCESS) diffuse = glm::vec3(d.r, d.g, d.b);
+            float opacity = 1.0f;
+            if (model_opacity && mat->Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && opacity < 1.0f) alpha = opacity;
+            auto named = alpha_by_material.find(material_name(mesh->mMaterialIndex));
+            if (named != alpha_by_material.end()) alpha = named->get<float>();
+          }
+          glm::vec4 c(glm::mix(m.colour, diffuse, mix), m.opaque ? 1.0f : alpha);
           unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
           for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
             const aiVector3D& q = mesh->mVertices[v];
@@ -392,11 +428,24 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     for (const char* key : {"params", "small"}) {
       if (!o.has(key)) continue;
       auto pn = o.child(key);
-      pn.expect_object({"count", "half_size", "depth", "strands", "segments", "sides", "segment_length",
-                        "tube_radius", "radius", "wiggle", "seed", "size", "spread", "height", "grid", "spacing"});
+      pn.expect_object({"count", "half_size", "depth", "strands", "segments", "sides", "segment_length", "tube_radius",
+                        "radius", "wiggle", "seed", "size", "spread", "height", "grid", "spacing", "colour_mix",
+                        "model_opacity", "alpha_by_material", "exclude_materials"});
       for (const auto& [pk, pv] : pn.raw().items()) {
-        (void)pv;
-        pn.child(pk).number(0, 1e7);
+        auto v = pn.child(pk);
+        if (pk == "model_opacity") {
+          v.boolean();
+        } else if (pk == "alpha_by_material") {
+          v.expect_object({});
+          for (const auto& [mk, mv] : pv.items()) v.child(mk).number(0, 1);
+        } else if (pk == "exclude_materials") {
+          if (!pv.is_array()) v.fail("expected an array of model material names");
+          for (size_t e = 0; e < pv.size(); ++e) v.element(e).str();
+        } else if ((pk == "grid" || pk == "spacing") && pv.is_array()) {
+          v.vec3(pk == "grid" ? 1 : 0, 1e4);
+        } else {
+          v.number(0, pk == "colour_mix" ? 1 : 1e7);
+        }
       }
       (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();
     }

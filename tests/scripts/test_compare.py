@@ -118,7 +118,7 @@ class CompareSynthetic(TempDirTest):
 class CompareRealRuns(TempDirTest):
     """Two runs of the same binary must agree; draws=32 relabelled as draws=8 must be caught."""
 
-    ARGS = ["run", "occupancy", "--quick", "--set", "size=8,32,33", "--reps", "5", "--resolution", "128x128"]
+    ARGS = ["run", "occupancy", "--quick", "--set", "size=8,32,33", "--reps", "7", "--resolution", "160x160"]
 
     def run_once(self, name, draws):
         out, raw = self.path(f"{name}.csv"), self.path(f"{name}_raw.csv")
@@ -144,6 +144,13 @@ class CompareRealRuns(TempDirTest):
         self.relabel_draws(slow, 8)
         self.relabel_draws(slow_raw, 8)
         same = run_script("compare.py", a, b, "--raw", a_raw, b_raw)
+        if summary(same)[:2] != (6, 0):
+            # ctest runs other tests beside this one on 2 cores: a millisecond case can be stalled for
+            # all its repetitions. Such a stall is real and compare.py is right to flag it, so the
+            # identical pair is measured once more; twice in a row would be a finding.
+            a2, a2_raw = self.run_once("a2", 8)
+            b2, b2_raw = self.run_once("b2", 8)
+            same = run_script("compare.py", a2, b2, "--raw", a2_raw, b2_raw)
         self.assertEqual(summary(same)[:2], (6, 0), same.stdout)
         for raw_args in ([], ["--raw", a_raw, slow_raw]):
             flagged = run_script("compare.py", a, slow, *raw_args)
