@@ -11,6 +11,8 @@ import sys
 from pathlib import Path
 
 ORDER = ["planes", "hairball", "smoke", "engine-grid", "house"]
+# Our stand-ins for the paper's models (scenes/engine-grid.json, scenes/house.json): same view names.
+PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
 TECHNIQUES = ["BASE-IS", "BASE-IMS", "BASE-RBS-L", "RBS-G", "CS-IS", "CS-IMS", "CS-RBS-L",
               "BMA-IS", "BMA-IMS", "BMA-RBS-L", "BMA-AUTO", "CPU-NATIVE"]
 
@@ -46,7 +48,8 @@ def main():
             if r["valid"] == "1":
                 speed.setdefault((t, "resolve"), []).append(sr)
                 speed.setdefault((t, "total"), []).append(st)
-            pr, pt = t3.get((scene, view, paper_name(t), "resolve")), t3.get((scene, view, paper_name(t), "total"))
+            key = (PAPER_SCENE.get(scene, scene), view.lower(), paper_name(t))
+            pr, pt = t3.get(key + ("resolve",)), t3.get(key + ("total",))
             paper = f"{pr}x / {pt}x" if pr else "-"
             notes = tot.get("bma_auto_choice", "") or ""
             print(f"| {scene} | {view} | {t} | {float(r['median_ms']):.1f} | {float(tot['median_ms']):.1f} | {sr:.2f}x | {st:.2f}x "

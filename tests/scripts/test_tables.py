@@ -70,6 +70,23 @@ class TablesMini(TempDirTest):
         self.assertAlmostEqual(float(rows[("BMA-RBS-L", "resolve_time")]["ours_ms"]), 5.0, places=3)
         self.assertEqual(rows[("CUDA-IS", "total_time")]["ours_ms"], "")  # CUDA: never ours
 
+    def test_stand_in_scenes_sit_beside_the_papers_models(self):
+        # The power plant's V1 has MAX_FRAGS 512 in the paper; our engine grid's V1 has its own 256.
+        with open(self.path("paper/mini.csv"), "a", encoding="utf-8") as f:
+            f.write("knowles2014-rbs,2,NVIDIA GTX Titan,,powerplant,V1,BASE-IS,512,total_time,ms,530\n"
+                    "knowles2014-rbs,2,NVIDIA GTX Titan,,powerplant,V2,BASE-IS,256,total_time,ms,490\n")
+        rows = [{"experiment": "oit", "variant": "base-is", "scene": "engine-grid", "view": "V1", "max_frags": 256,
+                 "pass": "total", "median_ms": 42.0},
+                {"experiment": "oit", "variant": "base-is", "scene": "planes", "view": "V2", "max_frags": 256,
+                 "pass": "total", "median_ms": 7.0}]
+        run = syn.write_summary(self.path("stand.csv"), rows, params=["scene", "view", "max_frags"])
+        proc = run_script("tables.py", run, "--paper", self.path("paper"), "--table", "knowles2014-2",
+                          "--format", "csv")
+        got = {(r["scene"], r["view"]): r["ours_ms"] for r in csv.DictReader(io.StringIO(proc.stdout))
+               if r["technique"] == "BASE-IS" and r["metric"] == "total_time"}
+        self.assertAlmostEqual(float(got[("powerplant", "V1")]), 42.0)
+        self.assertEqual(got[("powerplant", "V2")], "")  # planes never stands in for the power plant
+
     def test_unknown_table_and_missing_paper_dir_are_clear_errors(self):
         proc = run_script("tables.py", "--paper", self.path("paper"), "--table", "nope", check=False)
         self.assertEqual(proc.returncode, 2)
