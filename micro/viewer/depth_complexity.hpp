@@ -1,0 +1,38 @@
+#pragma once
+// The viewer's false-colour depth complexity (Z): each pixel's captured fragments counted by
+// walking its storage through the FRAG_* API (shaders/oit/storage/), shown blue (1 fragment) ->
+// green -> red (the peak) on a log scale, black where nothing landed. The same pass gives the
+// overlay's fragment total and peak depth.
+#include "core/gl_objects.hpp"
+#include "core/render_target.hpp"
+#include "core/shader.hpp"
+
+namespace oitbench::oit {
+class FragmentLists;
+}
+
+namespace oitbench::viewer {
+
+class DepthComplexity {
+ public:
+  // `storage_defines`: the defines that select the fragment storage the shader walks.
+  DepthComplexity(const ShaderLibrary& shaders, const Defines& storage_defines);
+
+  struct Counts {
+    unsigned peak = 0;
+    unsigned long long total = 0;
+  };
+  // Counts the fragments `lists` holds (a width x height capture) and reads back peak and total.
+  Counts count(const oit::FragmentLists& lists, int width, int height);
+  // The last count in false colour over the bound framebuffer's viewport.
+  void draw(int fb_width, int fb_height) const;
+
+ private:
+  gl::Program count_, colour_;
+  gl::Texture counts_;
+  gl::Buffer stats_;
+  int width_ = 0, height_ = 0;
+  FullscreenTriangle triangle_;
+};
+
+}  // namespace oitbench::viewer
