@@ -13,15 +13,20 @@ namespace {
 constexpr GLuint kDepthCountsUnit = 4, kDepthStatsBinding = 1;
 }  // namespace
 
-DepthComplexity::DepthComplexity(const ShaderLibrary& shaders, const Defines& storage_defines)
-    : count_(shaders.build({{GL_COMPUTE_SHADER, "viewer/depth_count.comp"}}, storage_defines)),
+DepthComplexity::DepthComplexity(const ShaderLibrary& shaders)
+    : shaders_(shaders),
       colour_(shaders.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "viewer/depth_colour.frag"}},
                             {})),
       stats_(gl::make_buffer()) {
   glNamedBufferStorage(stats_.get(), 2 * sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
 
-DepthComplexity::Counts DepthComplexity::count(const oit::FragmentLists& lists, int width, int height) {
+DepthComplexity::Counts DepthComplexity::count(const oit::FragmentLists& lists, const Defines& storage_defines,
+                                                int width, int height) {
+  if (!count_ || storage_defines != count_defines_) {
+    count_ = shaders_.build({{GL_COMPUTE_SHADER, "viewer/depth_count.comp"}}, storage_defines);
+    count_defines_ = storage_defines;
+  }
   if (width != width_ || height != height_) {
     counts_ = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(counts_.get(), 1, GL_R32UI, width, height);

@@ -15,20 +15,22 @@ namespace oitbench::viewer {
 
 class DepthComplexity {
  public:
-  // `storage_defines`: the defines that select the fragment storage the shader walks.
-  DepthComplexity(const ShaderLibrary& shaders, const Defines& storage_defines);
+  explicit DepthComplexity(const ShaderLibrary& shaders);
 
   struct Counts {
     unsigned peak = 0;
     unsigned long long total = 0;
   };
   // Counts the fragments `lists` holds (a width x height capture) and reads back peak and total.
-  Counts count(const oit::FragmentLists& lists, int width, int height);
+  // `storage_defines` select the storage layout the count shader walks (compiled on first use).
+  Counts count(const oit::FragmentLists& lists, const Defines& storage_defines, int width, int height);
   // The last count in false colour over the bound framebuffer's viewport.
   void draw(int fb_width, int fb_height) const;
 
  private:
+  const ShaderLibrary& shaders_;
   gl::Program count_, colour_;
+  Defines count_defines_;
   gl::Texture counts_;
   gl::Buffer stats_;
   int width_ = 0, height_ = 0;

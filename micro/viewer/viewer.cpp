@@ -165,10 +165,10 @@ class Viewer {
 
     // Everything that can be checked without a window is checked above, so a typo is reported as
     // such on a machine without a display too.
-    const char* display = std::getenv("DISPLAY");
-    if (!display || !*display)
-      throw BackendError("oitbench view opens a window and needs an X display, but DISPLAY is not set: run it on a "
-                         "desktop, or headless under Xvfb: xvfb-run -a oitbench view ...");
+    auto unset = [](const char* name) { return !std::getenv(name) || !*std::getenv(name); };
+    if (unset("DISPLAY") && unset("WAYLAND_DISPLAY"))
+      throw BackendError("oitbench view opens a window and needs a display, but neither DISPLAY nor WAYLAND_DISPLAY "
+                         "is set: run it on a desktop, or headless under Xvfb: xvfb-run -a oitbench view ...");
     ContextOptions copt;
     copt.backend = "glfw";
     copt.width = size.width;
@@ -185,7 +185,7 @@ class Viewer {
     input_ = std::make_unique<WindowInput>(static_cast<GLFWwindow*>(context_->native_window()));
     presenter_ = std::make_unique<ImagePresenter>(*shaders_);
     overlay_ = std::make_unique<TextOverlay>(*shaders_);
-    depth_ = std::make_unique<DepthComplexity>(*shaders_, Defines{});
+    depth_ = std::make_unique<DepthComplexity>(*shaders_);
 
     const oit::View& start = scene_.view(settings_.get("view"));
     camera_ = std::make_unique<FlyCamera>(
@@ -195,7 +195,7 @@ class Viewer {
 
   int run() {
     size_t next_script = 0;
-    auto last = Clock::now();
+    last_frame_ = Clock::now();
     for (int frame = 0; options_.frames <= 0 || frame < options_.frames; ++frame) {
       if (context_->window_should_close()) break;
       while (next_script < script_.size() && script_[next_script].frame == frame) press(script_[next_script++].press, true);
@@ -204,10 +204,10 @@ class Viewer {
       if (rebuild_) build_case(false);
       follow_window_size();
 
-      float dt = static_cast<float>(std::chrono::duration<double>(Clock::now() - last).count());
-      last = Clock::now();
+      float dt = static_cast<float>(seconds_since(last_frame_));
+      last_frame_ = Clock::now();
       if (frame > 0) frame_ms_.add("frame", dt * 1000.0);
-      camera_->move(input_->held_motion(), std::min(dt, 0.25f));
+      camera_->move(input_->held_motion(), std::min(dt, 1.0f));  // a held key never jumps across the scene
       glm::vec2 drag = input_->take_drag();
       if (drag != glm::vec2(0)) camera_->look(drag.x, drag.y);
       if (float s = input_->take_scroll(); s != 0) camera_->scale_speed(s);
@@ -295,10 +295,12 @@ class Viewer {
       if (startup) throw std::runtime_error(what);
       ++errors_;
       settings_ = built_settings_;
+      last_frame_ = Clock::now();
       say(what, true);
       return;
     }
     built_settings_ = settings_;
+    last_frame_ = Clock::now();  // the build is neither frame time nor time a held key moves the camera
     case_size_ = fb;
     pending_size_.reset();
     pass_ms_.clear();
@@ -364,7 +366,7 @@ class Viewer {
     }
     pass_ms_.add("total", total);
     if (const oit::FragmentLists* lists = case_->fragments(); lists && (depth_view_ || !counts_ || frame % kCountEvery == 0))
-      counts_ = depth_->count(*lists, case_size_.x, case_size_.y);
+      counts_ = depth_->count(*lists, Defines{}, case_size_.x, case_size_.y);  // linked lists: no storage define
   }
 
   // The frame into the window's back buffer: the image (or the depth view) and the overlay.
@@ -511,6 +513,7 @@ class Viewer {
   std::unique_ptr<CaseContext> case_context_;  // the case keeps references into it
   std::unique_ptr<oit::OitCase> case_;
   glm::ivec2 case_size_{0};
+  Clock::time_point last_frame_;
   std::optional<std::pair<glm::ivec2, Clock::time_point>> pending_size_;
   bool use_gpu_clock_ = false;
   RollingMedians pass_ms_, frame_ms_;

@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -93,6 +94,17 @@ TEST(Viewer, KeysSwitchTechniqueBmaMaxFragsAndApproximate) {
   EXPECT_NE(img->at(80, 90), glm::ivec3(255));
 }
 
+TEST(Viewer, ATechniqueThatCannotBeBuiltKeepsThePreviousOneAndExitsOne) {
+  // LAAT under sync=interlock needs ARB_fragment_shader_interlock (llvmpipe has none).
+  auto r = run_oitbench(with(kSmallPlanes, {"--technique", "WBOIT", "--set", "sync=interlock", "--frames", "4",
+                                            "--keys", "1:shift+T"}),
+                        120);
+  if (contains(r.err, "LAAT ready")) GTEST_SKIP() << "this driver has fragment shader interlock";
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "cannot build LAAT: sync=interlock needs")) << r.err;
+  EXPECT_TRUE(contains(r.err, "oitbench view: WBOIT:")) << r.err;  // the summary: still WBOIT
+}
+
 TEST(Viewer, SavesTheCameraAsANamedViewIntoTheSceneFile) {
   auto dir = temp_dir("viewer-save");
   std::string scene = (dir / "planes.json").string();
@@ -131,10 +143,12 @@ TEST(Viewer, BadTechniqueListsTheValidOnes) {
 }
 
 TEST(Viewer, NoDisplayIsAClearError) {
-  std::string display = std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "";
-  unsetenv("DISPLAY");
+  std::map<std::string, std::string> saved;
+  for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
+    if (const char* v = std::getenv(name)) saved[name] = v;
+  for (const auto& [name, v] : saved) unsetenv(name.c_str());
   auto r = run_oitbench(with(kSmallPlanes, {"--frames", "1"}), 60);
-  if (!display.empty()) setenv("DISPLAY", display.c_str(), 1);
+  for (const auto& [name, v] : saved) setenv(name.c_str(), v.c_str(), 1);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_TRUE(contains(r.err, "DISPLAY")) << r.err;
   EXPECT_TRUE(contains(r.err, "xvfb-run")) << r.err;
