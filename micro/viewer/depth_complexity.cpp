@@ -15,14 +15,14 @@ constexpr GLuint kDepthCountsUnit = 4, kDepthStatsBinding = 1;
 
 DepthComplexity::DepthComplexity(const ShaderLibrary& shaders)
     : shaders_(shaders),
-      colour_(shaders.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "viewer/depth_colour.frag"}},
-                            {})),
+      colour_(shaders.build(
+          {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "viewer/depth_colour.frag"}}, {})),
       stats_(gl::make_buffer()) {
   glNamedBufferStorage(stats_.get(), 2 * sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
 
 DepthComplexity::Counts DepthComplexity::count(const oit::FragmentLists& lists, const Defines& storage_defines,
-                                                int width, int height) {
+                                               int width, int height) {
   if (!count_ || storage_defines != count_defines_) {
     count_ = shaders_.build({{GL_COMPUTE_SHADER, "viewer/depth_count.comp"}}, storage_defines);
     count_defines_ = storage_defines;

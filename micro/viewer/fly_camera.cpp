@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace oitbench::viewer {
@@ -48,7 +47,8 @@ void FlyCamera::look(float dx, float dy) {
   glm::vec3 f = glm::vec3(glm::rotate(glm::mat4(1), -dx * kLookRadiansPerPixel, up_) * glm::vec4(forward_, 0));
   float along_up = glm::dot(f, up_);
   glm::vec3 level = glm::normalize(f - up_ * along_up);
-  float pitch = std::clamp(std::asin(std::clamp(along_up, -1.0f, 1.0f)) - dy * kLookRadiansPerPixel, -kMaxPitch, kMaxPitch);
+  float pitch =
+      std::clamp(std::asin(std::clamp(along_up, -1.0f, 1.0f)) - dy * kLookRadiansPerPixel, -kMaxPitch, kMaxPitch);
   forward_ = glm::normalize(level * std::cos(pitch) + up_ * std::sin(pitch));
 }
 

@@ -8,8 +8,8 @@
 namespace oitbench::viewer {
 
 ImagePresenter::ImagePresenter(const ShaderLibrary& shaders)
-    : program_(shaders.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "viewer/present.frag"}},
-                             {})) {}
+    : program_(shaders.build(
+          {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "viewer/present.frag"}}, {})) {}
 
 void ImagePresenter::draw(GLuint image, int image_width, int image_height, glm::vec3 background, int fb_width,
                           int fb_height) const {

@@ -1,9 +1,8 @@
 #pragma once
 // Puts a case's result on the window: the RGBA32F image where alpha > 0, the scene's background
 // where alpha == 0 (no fragment landed), scaled to the framebuffer; and saves what the window shows.
-#include <string>
-
 #include <glm/glm.hpp>
+#include <string>
 
 #include "core/gl_objects.hpp"
 #include "core/render_target.hpp"

@@ -62,7 +62,8 @@ std::vector<ScriptedKey> parse_key_script(const std::string& text) {
     keys.push_back(k);
   }
   // Presses at the same frame keep their order in the script.
-  std::stable_sort(keys.begin(), keys.end(), [](const ScriptedKey& a, const ScriptedKey& b) { return a.frame < b.frame; });
+  std::stable_sort(keys.begin(), keys.end(),
+                   [](const ScriptedKey& a, const ScriptedKey& b) { return a.frame < b.frame; });
   return keys;
 }
 

@@ -27,7 +27,8 @@ const ParamSpec& OitSettings::spec(const std::string& name) const {
     if (s.name == name) return s;
   std::string names;
   for (const auto& s : specs_) names += (names.empty() ? "" : ", ") + s.name;
-  throw UsageError("experiment '" + std::string(kExperiment) + "' has no parameter '" + name + "'; parameters: " + names);
+  throw UsageError("experiment '" + std::string(kExperiment) + "' has no parameter '" + name +
+                   "'; parameters: " + names);
 }
 
 bool OitSettings::has_param(const std::string& name) const {
@@ -79,7 +80,8 @@ std::string OitSettings::scale_max_frags(bool up, unsigned in_use, bool& changed
   if (uses_nodes()) {
     const ParamSpec& s = spec("nodes");
     long long n = params_.get_int("nodes");
-    long long next = std::clamp<long long>(up ? n * 2 : n / 2, static_cast<long long>(s.min), static_cast<long long>(s.max));
+    long long next =
+        std::clamp<long long>(up ? n * 2 : n / 2, static_cast<long long>(s.min), static_cast<long long>(s.max));
     if (next == n) return "nodes " + std::to_string(n) + " is the " + (up ? "largest" : "smallest") + " allowed";
     set("nodes", std::to_string(next));
     changed = true;

@@ -6,10 +6,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "core/text_position.hpp"
 
@@ -30,8 +29,10 @@ class JsonScanner {
   // i at an opening quote; returns the index after the closing one.
   size_t skip_string(size_t i) const {
     for (++i; i < t_.size(); ++i) {
-      if (t_[i] == '\\') ++i;
-      else if (t_[i] == '"') return i + 1;
+      if (t_[i] == '\\')
+        ++i;
+      else if (t_[i] == '"')
+        return i + 1;
     }
     fail(i, "unterminated string");
   }
@@ -140,9 +141,12 @@ std::string vec3(glm::vec3 v) { return "[" + number(v.x) + ", " + number(v.y) + 
 
 const char* order_text(oit::SubmitOrder o) {
   switch (o) {
-    case oit::SubmitOrder::FrontToBack: return "front-to-back";
-    case oit::SubmitOrder::BackToFront: return "back-to-front";
-    default: return "as-generated";
+    case oit::SubmitOrder::FrontToBack:
+      return "front-to-back";
+    case oit::SubmitOrder::BackToFront:
+      return "back-to-front";
+    default:
+      return "as-generated";
   }
 }
 
@@ -160,7 +164,8 @@ std::vector<std::string> view_names_in_file_order(const std::string& path, const
   JsonScanner scan(path, text);
   auto [open, close] = scan.views_object();
   std::vector<std::string> names;
-  for (const auto& m : scan.members(open, close)) names.push_back(nlohmann::json::parse("\"" + m.key + "\"").get<std::string>());
+  for (const auto& m : scan.members(open, close))
+    names.push_back(nlohmann::json::parse("\"" + m.key + "\"").get<std::string>());
   return names;
 }
 

@@ -1,10 +1,9 @@
 #pragma once
 // On-screen text for the viewer: stb_easy_font's quads (no font texture), each line over a dark
 // backdrop so it reads on white and on black scenes alike, drawn in one call.
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/gl_objects.hpp"
 #include "core/shader.hpp"

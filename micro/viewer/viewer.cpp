@@ -128,9 +128,12 @@ class WindowInput {
  private:
   static WindowInput& of(GLFWwindow* w) { return *static_cast<WindowInput*>(glfwGetWindowUserPointer(w)); }
   void on_key(int key, bool shift) {
-    if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) presses_.push_back({static_cast<char>('A' + key - GLFW_KEY_A), shift});
-    else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) presses_.push_back({static_cast<char>('0' + key - GLFW_KEY_0), shift});
-    else if (key == GLFW_KEY_ESCAPE) presses_.push_back({kEscape, shift});
+    if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z)
+      presses_.push_back({static_cast<char>('A' + key - GLFW_KEY_A), shift});
+    else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9)
+      presses_.push_back({static_cast<char>('0' + key - GLFW_KEY_0), shift});
+    else if (key == GLFW_KEY_ESCAPE)
+      presses_.push_back({kEscape, shift});
   }
 
   GLFWwindow* window_;
@@ -167,8 +170,9 @@ class Viewer {
     // such on a machine without a display too.
     auto unset = [](const char* name) { return !std::getenv(name) || !*std::getenv(name); };
     if (unset("DISPLAY") && unset("WAYLAND_DISPLAY"))
-      throw BackendError("oitbench view opens a window and needs a display, but neither DISPLAY nor WAYLAND_DISPLAY "
-                         "is set: run it on a desktop, or headless under Xvfb: xvfb-run -a oitbench view ...");
+      throw BackendError(
+          "oitbench view opens a window and needs a display, but neither DISPLAY nor WAYLAND_DISPLAY "
+          "is set: run it on a desktop, or headless under Xvfb: xvfb-run -a oitbench view ...");
     ContextOptions copt;
     copt.backend = "glfw";
     copt.width = size.width;
@@ -189,7 +193,8 @@ class Viewer {
 
     const oit::View& start = scene_.view(settings_.get("view"));
     camera_ = std::make_unique<FlyCamera>(
-        start, oit::build_mesh(scene_, start, settings_.get("detail") == "small" ? oit::Detail::Small : oit::Detail::Full));
+        start,
+        oit::build_mesh(scene_, start, settings_.get("detail") == "small" ? oit::Detail::Small : oit::Detail::Full));
     build_case(/*startup=*/true);
   }
 
@@ -198,7 +203,8 @@ class Viewer {
     last_frame_ = Clock::now();
     for (int frame = 0; options_.frames <= 0 || frame < options_.frames; ++frame) {
       if (context_->window_should_close()) break;
-      while (next_script < script_.size() && script_[next_script].frame == frame) press(script_[next_script++].press, true);
+      while (next_script < script_.size() && script_[next_script].frame == frame)
+        press(script_[next_script++].press, true);
       for (const auto& k : input_->take_presses()) press(k, false);
       if (context_->window_should_close()) break;
       if (rebuild_) build_case(false);
@@ -316,8 +322,10 @@ class Viewer {
       pending_size_.reset();
       return;
     }
-    if (!pending_size_ || pending_size_->first != fb) pending_size_ = {fb, Clock::now()};
-    else if (seconds_since(pending_size_->second) > kResizeSettleSeconds) build_case(false);
+    if (!pending_size_ || pending_size_->first != fb)
+      pending_size_ = {fb, Clock::now()};
+    else if (seconds_since(pending_size_->second) > kResizeSettleSeconds)
+      build_case(false);
   }
 
   void press(KeyPress k, bool scripted) {
@@ -333,19 +341,35 @@ class Viewer {
       return;
     }
     switch (k.key) {
-      case 'T': say(settings_.step_technique(k.shift ? -1 : 1, changed)); break;
-      case 'B': say(settings_.toggle_bma(changed)); break;
-      case 'M': say(settings_.scale_max_frags(!k.shift, case_ ? case_->max_frags() : 0, changed)); break;
-      case 'C': say(settings_.step_capture(changed)); break;
+      case 'T':
+        say(settings_.step_technique(k.shift ? -1 : 1, changed));
+        break;
+      case 'B':
+        say(settings_.toggle_bma(changed));
+        break;
+      case 'M':
+        say(settings_.scale_max_frags(!k.shift, case_ ? case_->max_frags() : 0, changed));
+        break;
+      case 'C':
+        say(settings_.step_capture(changed));
+        break;
       case 'Z':
         depth_view_ = !depth_view_;
         counts_.reset();
         say(std::string("depth complexity ") + (depth_view_ ? "on" : "off"));
         break;
-      case 'P': screenshot_now_ = true; break;
-      case 'V': save_view(); break;
-      case 'H': help_ = !help_; break;
-      case kEscape: input_->request_close(); break;
+      case 'P':
+        screenshot_now_ = true;
+        break;
+      case 'V':
+        save_view();
+        break;
+      case 'H':
+        help_ = !help_;
+        break;
+      case kEscape:
+        input_->request_close();
+        break;
       default:
         if (scripted) say("key " + key_name(k) + " does nothing (H: help)");
     }
@@ -365,7 +389,8 @@ class Viewer {
       total += ms;
     }
     pass_ms_.add("total", total);
-    if (const oit::FragmentLists* lists = case_->fragments(); lists && (depth_view_ || !counts_ || frame % kCountEvery == 0))
+    if (const oit::FragmentLists* lists = case_->fragments();
+        lists && (depth_view_ || !counts_ || frame % kCountEvery == 0))
       counts_ = depth_->count(*lists, Defines{}, case_size_.x, case_size_.y);  // linked lists: no storage define
   }
 
@@ -428,16 +453,15 @@ class Viewer {
     if (case_ && case_->fragments()) {
       std::string f = "fragments " + grouped(case_->fragments()->fragments());
       if (counts_) f += "   peak depth " + std::to_string(counts_->peak);
-      if (counts_ && settings_.uses_max_frags() && counts_->peak > case_->max_frags())
-        f += "  > MAX_FRAGS: truncated";
+      if (counts_ && settings_.uses_max_frags() && counts_->peak > case_->max_frags()) f += "  > MAX_FRAGS: truncated";
       lines.push_back({f});
     } else {
       lines.push_back({"fragments: " + settings_.technique() + " keeps no per-pixel lists", grey});
     }
     if (depth_view_) {
       if (case_ && case_->fragments() && counts_)
-        lines.push_back({"depth complexity: black 0, blue 1 .. green .. red " + std::to_string(counts_->peak) +
-                         " (log)"});
+        lines.push_back(
+            {"depth complexity: black 0, blue 1 .. green .. red " + std::to_string(counts_->peak) + " (log)"});
       else
         lines.push_back({"depth complexity needs captured fragments: " + settings_.technique() +
                              " has none (exact techniques only)",
@@ -514,7 +538,7 @@ class Viewer {
   std::unique_ptr<oit::OitCase> case_;
   glm::ivec2 case_size_{0};
   Clock::time_point last_frame_;
-  std::optional<std::pair<glm::ivec2, Clock::time_point>> pending_size_;
+  std::optional<std::pair<glm::ivec2, Clock::time_point> > pending_size_;
   bool use_gpu_clock_ = false;
   RollingMedians pass_ms_, frame_ms_;
   std::optional<DepthComplexity::Counts> counts_;

@@ -16,14 +16,14 @@ struct ViewerOptions {
   std::string scene = "planes";  // name in scenes/ or a path to a .json
   std::string view;              // empty: the scene file's first view
   std::string technique = "BASE-IS";
-  std::string size = "800x600";  // window WIDTHxHEIGHT
-  std::string detail = "full";   // full | small
-  std::vector<std::string> sets; // other oit parameters, NAME=VALUE
-  int frames = 0;                // > 0: render this many frames, then exit
-  std::string screenshot;        // PNG of the last frame (and of P presses)
-  std::string keys;              // scripted presses, "2:T,4:Z,6:V"
-  std::string save_view;         // name for V (default view-1, view-2, ...)
-  std::string shader_root;       // empty: the default shaders/
+  std::string size = "800x600";   // window WIDTHxHEIGHT
+  std::string detail = "full";    // full | small
+  std::vector<std::string> sets;  // other oit parameters, NAME=VALUE
+  int frames = 0;                 // > 0: render this many frames, then exit
+  std::string screenshot;         // PNG of the last frame (and of P presses)
+  std::string keys;               // scripted presses, "2:T,4:Z,6:V"
+  std::string save_view;          // name for V (default view-1, view-2, ...)
+  std::string shader_root;        // empty: the default shaders/
   bool gl_debug = false;
 };
 

@@ -3,9 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/params.hpp"
 #include "support/test_support.hpp"
@@ -66,8 +65,9 @@ TEST(SceneViews, InsertedAfterTheLastViewIndentedLikeTheOthersAndNothingElseChan
   size_t at = text.find("\"order\": \"as-generated\" }\n  }");
   ASSERT_NE(at, std::string::npos);
   at = text.find('}', at) + 1;  // the end of the last view
-  std::string inserted = ",\n    \"mine\": { \"eye\": [0.3333, -2, 4.5], \"target\": [0, 0, 0], \"up\": [0, 1, 0], "
-                         "\"fov\": 50, \"order\": \"back-to-front\" }";
+  std::string inserted =
+      ",\n    \"mine\": { \"eye\": [0.3333, -2, 4.5], \"target\": [0, 0, 0], \"up\": [0, 1, 0], "
+      "\"fov\": 50, \"order\": \"back-to-front\" }";
   EXPECT_EQ(out, text.substr(0, at) + inserted + text.substr(at));
   oit::SceneDesc s = oit::parse_scene("planes.json", out);
   EXPECT_NEAR(s.view("mine").eye.x, 0.3333f, 1e-6f);

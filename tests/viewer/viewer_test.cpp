@@ -86,8 +86,8 @@ TEST(Viewer, KeysSwitchTechniqueBmaMaxFragsAndApproximate) {
                                             "1:B,2:M,3:B,4:shift+T,5:Z,6:C,7:shift+M"}),
                         240);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* said : {"BMA-IS ready", "MAX_FRAGS 64", "technique BASE-IS", "unsorted ready",
-                           "M: unsorted has no MAX_FRAGS"})
+  for (const char* said :
+       {"BMA-IS ready", "MAX_FRAGS 64", "technique BASE-IS", "unsorted ready", "M: unsorted has no MAX_FRAGS"})
     EXPECT_TRUE(contains(r.err, said)) << said << " missing in:\n" << r.err;
   auto img = read_png(png);
   ASSERT_TRUE(img);
@@ -96,9 +96,9 @@ TEST(Viewer, KeysSwitchTechniqueBmaMaxFragsAndApproximate) {
 
 TEST(Viewer, ATechniqueThatCannotBeBuiltKeepsThePreviousOneAndExitsOne) {
   // LAAT under sync=interlock needs ARB_fragment_shader_interlock (llvmpipe has none).
-  auto r = run_oitbench(with(kSmallPlanes, {"--technique", "WBOIT", "--set", "sync=interlock", "--frames", "4",
-                                            "--keys", "1:shift+T"}),
-                        120);
+  auto r = run_oitbench(
+      with(kSmallPlanes, {"--technique", "WBOIT", "--set", "sync=interlock", "--frames", "4", "--keys", "1:shift+T"}),
+      120);
   if (contains(r.err, "LAAT ready")) GTEST_SKIP() << "this driver has fragment shader interlock";
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_TRUE(contains(r.err, "cannot build LAAT: sync=interlock needs")) << r.err;
@@ -125,7 +125,7 @@ TEST(Viewer, SavesTheCameraAsANamedViewIntoTheSceneFile) {
   EXPECT_NEAR(v.eye.y, 0.0f, 1e-4f);
   EXPECT_NEAR(v.eye.z, 3.0f - 0.2f * 1.5f, 1e-3f);
   EXPECT_NEAR(v.target.z, v.eye.z - 3.0f, 1e-3f);  // the start view's focus distance
-  EXPECT_EQ(s.view("closer-2").eye, v.eye);      // the second V: a new name, never an overwrite
+  EXPECT_EQ(s.view("closer-2").eye, v.eye);        // the second V: a new name, never an overwrite
   EXPECT_EQ(s.view("fwd").eye, glm::vec3(0, 0, 3));
 }
 
