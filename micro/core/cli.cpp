@@ -7,6 +7,7 @@
 #include "core/csv.hpp"
 #include "core/presets.hpp"
 #include "core/runner.hpp"
+#include "viewer/viewer.hpp"
 
 namespace oitbench {
 
@@ -103,7 +104,8 @@ int run_cli(int argc, char** argv) {
                          "  oitbench run occupancy --quick --out results/occ.csv\n"
                          "  oitbench run occupancy --set variant=unrolled --set size=32,33\n"
                          "  oitbench run --preset default --out run.csv\n"
-                         "  oitbench render --scene hairball --view rev --technique MLAB --set nodes=8 --out mlab.png\n\n") +
+                         "  oitbench render --scene hairball --view rev --technique MLAB --set nodes=8 --out mlab.png\n"
+                         "  oitbench view --scene hairball --technique BMA-IS\n\n") +
              kExitCodes);
   app.require_subcommand(1);
 
@@ -169,6 +171,30 @@ int run_cli(int argc, char** argv) {
   render->add_option("--resolution", r_resolution, "WIDTHxHEIGHT");
   render->add_option("--set", r_sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8)")->take_all();
 
+  auto* view = app.add_subcommand(
+      "view", "Open a window on one scene, rendered live by the oit experiment's cases: fly camera, keys to switch "
+              "technique, BMA, MAX_FRAGS and capture storage, per-pass timings and depth complexity on screen, and a key "
+              "that saves the camera as a named view in the scene file. Needs a display (headless: xvfb-run -a)");
+  viewer::ViewerOptions v_opt;
+  view->add_option("--scene", v_opt.scene, "Scene name (scenes/NAME.json) or path to a scene .json")->capture_default_str();
+  view->add_option("--view", v_opt.view, "View named in the scene file to start from (default: the file's first)");
+  view->add_option("--technique", v_opt.technique, "Technique to start with (see: oitbench list, experiment oit)")
+      ->capture_default_str();
+  view->add_option("--size", v_opt.size, "Window WIDTHxHEIGHT (the cases render at the window's size)")->capture_default_str();
+  view->add_option("--detail", v_opt.detail, "Scene size: full, or small (the scene file's small overrides)")
+      ->capture_default_str();
+  view->add_option("--set", v_opt.sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8, block=16)")->take_all();
+  view->add_option("--frames", v_opt.frames, "Render this many frames, then exit 0 (default: until Esc or closed)")
+      ->check(CLI::NonNegativeNumber);
+  view->add_option("--screenshot", v_opt.screenshot, "Save the last frame, overlay included, as this PNG (also P's file)");
+  view->add_option("--keys", v_opt.keys, "Scripted key presses FRAME:KEY,... e.g. \"2:T,4:Z,6:shift+M,8:V\" (tests); "
+                                         "W/A/S/D/Q/E move as if held for 0.1 s");
+  view->add_option("--save-view", v_opt.save_view, "Name for the view V saves (taken: NAME-2, ...; default view-1, view-2, ...)");
+  view->add_flag("--gl-debug", v_opt.gl_debug, "Print KHR_debug messages to stderr");
+  view->footer(std::string("Keys:\n") + viewer::key_help() +
+               "\n\nExit codes: 0 done, 1 a case could not be built or a view/screenshot not saved, 2 usage error,\n"
+               "3 no display or no GL context (run under xvfb-run -a).");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -182,6 +208,7 @@ int run_cli(int argc, char** argv) {
       return 0;
     }
     if (*info) return print_info(copt);
+    if (*view) return viewer::run_viewer(registry, v_opt);
     if (*render) {
       std::string stem = r_out.ends_with(".png") ? r_out.substr(0, r_out.size() - 4) : r_out;
       RunRequest req{"oit", {{"scene", {r_scene}}, {"view", {r_view}}, {"technique", {r_technique}}, {"dump", {stem}}},
