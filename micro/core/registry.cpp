@@ -8,6 +8,7 @@ gl::Program CaseContext::build(const std::vector<ShaderStage>& stages, Defines d
   if (fault_ == "wrong-result") defines.emplace_back("OITBENCH_FAULT_WRONG_RESULT", "1");
   if (fault_ == "compile-error") defines.emplace_back("OITBENCH_FAULT_COMPILE_ERROR", "1");
   if (fault_ == "hang") defines.emplace_back("OITBENCH_FAULT_HANG", "1");
+  if (fault_ == "lose-fragment") defines.emplace_back("OITBENCH_FAULT_LOSE_FRAGMENT", "1");
   return shaders_.build(stages, defines);
 }
 
@@ -38,9 +39,10 @@ std::vector<ParamSpec> Registry::framework_params() {
   fault.name = "fault";
   fault.description =
       "fault injection for testing the framework: wrong-result (the shader perturbs its output, so the "
-      "validator must fail), compile-error, hang (an endless shader loop for the watchdog)";
+      "validator must fail), compile-error, hang (an endless shader loop for the watchdog), lose-fragment (oit's "
+      "capture drops the fragments of the diagonal, so its capture checks must fail)";
   fault.defaults = {"none"};
-  fault.allowed = {"none", "wrong-result", "compile-error", "hang"};
+  fault.allowed = {"none", "wrong-result", "compile-error", "hang", "lose-fragment"};
   ParamSpec seed;
   seed.name = "seed";
   seed.description = "seed of the case's random inputs";

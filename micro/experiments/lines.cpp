@@ -260,7 +260,7 @@ class LinesCase final : public CaseInstance {
   void capture() {
     target_.bind();
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    lists_.capture(capture_.get(), [&] {
+    lists_.capture({capture_.get()}, [&] {
       glBindVertexArray(vao_.get());
       glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(2 * segments_));
     });

@@ -8,6 +8,7 @@
 
 #include "core/registry.hpp"
 #include "oit/approx.hpp"
+#include "oit/fragment_storage.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/scene.hpp"
 
@@ -56,14 +57,19 @@ class OitExperiment final : public Experiment {
     ParamSpec auto_cache{"bma_auto_cache", "BMA-AUTO: on reads and writes the per-driver choice cache "
                                            "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
                          {"on"}, {}, {"on", "off"}};
-    std::vector<ParamSpec> ps = {scene, view, technique, detail, block, pool, max_frags, cs_group, auto_cache};
+    ParamSpec capture{"capture", "where the captured fragments live (Knowles 2014 section 2.2): PPLL per-pixel linked "
+                                 "lists (one pass, global counter, re-rendered when the pool overflows); PPPA packed "
+                                 "per-pixel arrays (a count pass, a prefix sum that sizes the buffer exactly, a fill "
+                                 "pass; no next pointers)",
+                      {"PPLL"}, {}, capture_storage_names()};
+    std::vector<ParamSpec> ps = {scene, view, technique, capture, detail, block, pool, max_frags, cs_group, auto_cache};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     return ps;
   }
   std::vector<std::string> metric_columns() const override {
     return {"polygons",         "total_fragments", "peak_depth",     "mean_depth",    "fragments_per_s",
             "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
-            "node_pool_bytes",  "bma_auto_choice", "bma_auto_source", "bma_auto_timings",
+            "node_pool_bytes",  "capture_count_ms", "bma_auto_choice", "bma_auto_source", "bma_auto_timings",
             "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels",
             // approximate techniques (micro/oit/approx.cpp)
             "psnr", "frac_pixels_off", "model_rmse", "model_max_diff", "nonfinite", "capped_updates", "flicker",

@@ -473,15 +473,16 @@ class ApproxCase final : public OitCase {
 
     // The fragments, once: the exact reference and every model work on these.
     size_t pixels = static_cast<size_t>(width_) * height_;
-    lists_ = std::make_unique<FragmentLists>(width_, height_, pixels * 4, false);
-    gl::Program capture = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}}, {});
-    set_view_proj(capture, vp);
+    lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
+    auto capture = build_capture_programs(*lists_, ctx,
+                                          {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
+    for (const auto& prog : capture) set_view_proj(prog, vp);
     out_.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    lists_->capture(capture.get(), [&] { mesh_->draw(); });
+    lists_->capture(ids(capture), [&] { mesh_->draw(); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     host_ = lists_->read_back();
     lists_.reset();  // its pool is not needed for timing
@@ -715,7 +716,7 @@ class ApproxCase final : public OitCase {
   RenderTarget out_, accum_;
   FullscreenTriangle quad_;
   std::unique_ptr<GpuMesh> mesh_;
-  std::unique_ptr<FragmentLists> lists_;
+  std::unique_ptr<FragmentStorage> lists_;
   HostLists host_;
   ApproxSettings settings_;
   bool arrays_ = false, at_family_ = false;

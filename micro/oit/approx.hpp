@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/registry.hpp"
-#include "oit/fragment_lists.hpp"
+#include "oit/fragment_storage.hpp"
 #include "oit/oit_case.hpp"
 
 namespace oitbench::oit {

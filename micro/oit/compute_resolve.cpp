@@ -5,18 +5,18 @@
 
 namespace oitbench::oit {
 
-ComputeResolve::ComputeResolve(const CaseContext& ctx, Defines sort_defines, glm::vec3 background, int group_x,
+ComputeResolve::ComputeResolve(const CaseContext& ctx, Defines defines, glm::vec3 background, int group_x,
                                int group_y)
     : group_x_(group_x), group_y_(group_y) {
-  sort_defines.push_back({"CS_GROUP_X", std::to_string(group_x)});
-  sort_defines.push_back({"CS_GROUP_Y", std::to_string(group_y)});
-  program_ = ctx.build({{GL_COMPUTE_SHADER, "oit/resolve.comp"}}, sort_defines);
+  defines.push_back({"CS_GROUP_X", std::to_string(group_x)});
+  defines.push_back({"CS_GROUP_Y", std::to_string(group_y)});
+  program_ = ctx.build({{GL_COMPUTE_SHADER, "oit/resolve.comp"}}, defines);
   glProgramUniform3f(program_.get(), glGetUniformLocation(program_.get(), "background"), background.r, background.g,
                      background.b);
   glProgramUniform1i(program_.get(), glGetUniformLocation(program_.get(), "zero"), 0);
 }
 
-void ComputeResolve::run(const FragmentLists& lists, const RenderTarget& target) const {
+void ComputeResolve::run(const FragmentStorage& lists, const RenderTarget& target) const {
   const float clear[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(target.framebuffer(), GL_COLOR, 0, clear);
   lists.bind();

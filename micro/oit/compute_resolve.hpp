@@ -9,19 +9,20 @@
 
 #include "core/registry.hpp"
 #include "core/render_target.hpp"
-#include "oit/fragment_lists.hpp"
+#include "oit/fragment_storage.hpp"
 
 namespace oitbench::oit {
 
-// Image unit of the resolved colour (units 0-3 are the lists', see fragment_lists.hpp).
+// Image unit of the resolved colour (units 0-3 are the fragment storage's, see fragment_storage.hpp).
 inline constexpr GLuint kResolvedUnit = 4;
 
 class ComputeResolve {
  public:
-  ComputeResolve(const CaseContext& ctx, Defines sort_defines, glm::vec3 background, int group_x, int group_y);
+  // `defines`: the sort's and the storage layout's.
+  ComputeResolve(const CaseContext& ctx, Defines defines, glm::vec3 background, int group_x, int group_y);
   // Clears `target`'s colour, resolves every pixel of `lists` into it and waits for nothing: the
   // caller's glFinish or read-back does (the barrier makes the stores visible to both).
-  void run(const FragmentLists& lists, const RenderTarget& target) const;
+  void run(const FragmentStorage& lists, const RenderTarget& target) const;
 
  private:
   gl::Program program_;

@@ -19,7 +19,8 @@
 #include "oit/approx.hpp"
 #include "oit/bma_auto.hpp"
 #include "oit/compute_resolve.hpp"
-#include "oit/fragment_lists.hpp"
+#include "oit/fragment_storage.hpp"
+#include "oit/packed_arrays.hpp"
 #include "oit/gpu_mesh.hpp"
 #include "oit/reference.hpp"
 #include "oit/resolve_sort.hpp"
@@ -38,6 +39,11 @@ unsigned next_pow2(unsigned v) {
   unsigned p = 1;
   while (p < v) p <<= 1;
   return p;
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
 }
 
 std::string fmt(double v) {
@@ -70,14 +76,11 @@ class ExactCase final : public OitCase {
     view_proj_ = view_projection(view, mesh, static_cast<float>(ctx.width()) / ctx.height());
     size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
     long long init = p.get_int("initial_pool");
-    lists_ = std::make_unique<FragmentLists>(ctx.width(), ctx.height(), init > 0 ? static_cast<size_t>(init) : pixels * 4,
-                                             bma_);
-    Defines capture_defines;
-    if (bma_) capture_defines.push_back({"STORAGE_COUNTS", ""});
-    capture_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
-                         capture_defines);
-    glProgramUniformMatrix4fv(capture_.get(), glGetUniformLocation(capture_.get(), "viewProj"), 1, GL_FALSE,
-                              &view_proj_[0][0]);
+    lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx,
+                                   init > 0 ? static_cast<size_t>(init) : pixels * 4, bma_);
+    capture_ = build_capture_programs(*lists_, ctx,
+                                      {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
+    set_view_projection(view_proj_);
 
     // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
     // (the next power of two at or above it, as the paper does) before anything is compiled.
@@ -88,14 +91,14 @@ class ExactCase final : public OitCase {
     if (native_) return;
     if (compute_) {
       auto [gx, gy] = parse_group(p.get("cs_group"));
-      compute_resolve_ = std::make_unique<ComputeResolve>(
-          ctx, sort_defines(sort_of_technique(technique_), max_frags_, static_cast<unsigned>(block_)),
-          scene_.background, gx, gy);
+      compute_resolve_ = std::make_unique<ComputeResolve>(ctx, resolve_defines(sort_of_technique(technique_), max_frags_),
+                                                          scene_.background, gx, gy);
       return;
     }
     if (bma_) {
-      count_ = ctx.build({{GL_COMPUTE_SHADER, "oit/bma_count.comp"}}, {});
-      mask_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/bma_mask.frag"}}, {});
+      count_ = ctx.build({{GL_COMPUTE_SHADER, "oit/bma_count.comp"}}, lists_->defines());
+      mask_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/bma_mask.frag"}},
+                        lists_->defines());
       histogram_ = gl::make_buffer();
       glNamedBufferStorage(histogram_.get(), 32 * sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
       for (unsigned top = kFirstInterval; top <= max_frags_; top *= 2) interval_tops_.push_back(top);
@@ -114,15 +117,15 @@ class ExactCase final : public OitCase {
 
   void set_view_projection(const glm::mat4& view_proj) override {
     view_proj_ = view_proj;
-    glProgramUniformMatrix4fv(capture_.get(), glGetUniformLocation(capture_.get(), "viewProj"), 1, GL_FALSE,
-                              &view_proj_[0][0]);
+    for (const auto& prog : capture_)
+      glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE, &view_proj_[0][0]);
   }
   GLuint result_texture() override {
     if (native_ && !native_out_.empty())  // CPU-NATIVE's image lives on the CPU: upload it for display
       glTextureSubImage2D(target_.color_texture(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, native_out_.data());
     return target_.color_texture();
   }
-  const FragmentLists* fragments() const override { return lists_.get(); }
+  const FragmentStorage* fragments() const override { return lists_.get(); }
   unsigned max_frags() const override { return max_frags_; }
 
   void run(PassTimer& timer) override {
@@ -132,6 +135,7 @@ class ExactCase final : public OitCase {
       auto start = std::chrono::steady_clock::now();
       overflow_rerenders_ += capture();
       capture_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      if (const auto* packed = dynamic_cast<const PackedArrays*>(lists_.get())) count_ms_.push_back(packed->last_count_ms());
     }
     if (native_) {
       {
@@ -229,8 +233,8 @@ class ExactCase final : public OitCase {
     m["mean_depth"] = fmt(stats.mean_depth);
     m["max_frags"] = std::to_string(max_frags_);
     m["node_pool"] = std::to_string(lists_->pool());
-    // Nodes (8-byte fragment + 4-byte next) plus the per-pixel heads (and BMA's counts).
-    m["node_pool_bytes"] = std::to_string(lists_->pool() * 12 + stats.depth.size() * 4 * (bma_ ? 2 : 1));
+    m["node_pool_bytes"] = std::to_string(lists_->bytes());
+    if (!count_ms_.empty()) m["capture_count_ms"] = fmt(median(count_ms_));
     if (auto_) {
       m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
       m["bma_auto_source"] = auto_choice_.source;
@@ -240,11 +244,7 @@ class ExactCase final : public OitCase {
     size_t truncated = 0;
     for (unsigned d : stats.depth) truncated += d > max_frags_;
     m["truncated_pixels"] = std::to_string(truncated);
-    if (!capture_ms_.empty()) {
-      auto ms = capture_ms_;
-      std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
-      m["fragments_per_s"] = fmt(stats.total_fragments / (ms[ms.size() / 2] / 1000.0));
-    }
+    if (!capture_ms_.empty()) m["fragments_per_s"] = fmt(stats.total_fragments / (median(capture_ms_) / 1000.0));
     if (bma_) {
       std::string s;
       for (size_t i = 0; i < interval_tops_.size(); ++i)
@@ -253,6 +253,7 @@ class ExactCase final : public OitCase {
       m["bma_intervals"] = s;
     }
     std::vector<std::string> problems;
+    if (!host.error.empty()) problems.push_back(host.error);
     if (!stats.error.empty()) problems.push_back(stats.error);
     if (stats.total_fragments != lists_->fragments())
       problems.push_back("the lists hold " + std::to_string(stats.total_fragments) + " fragments but " +
@@ -331,7 +332,7 @@ class ExactCase final : public OitCase {
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    int r = lists_->capture(capture_.get(), [&] { mesh_->draw(); });
+    int r = lists_->capture(ids(capture_), [&] { mesh_->draw(); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     return r;
   }
@@ -342,8 +343,15 @@ class ExactCase final : public OitCase {
     return i;
   }
 
-  gl::Program build_resolve(ResolveSort sort, unsigned max_frags) {
+  // The sort's defines plus the storage layout's.
+  Defines resolve_defines(ResolveSort sort, unsigned max_frags) const {
     Defines d = sort_defines(sort, max_frags, static_cast<unsigned>(block_));
+    for (auto& x : lists_->defines()) d.push_back(x);
+    return d;
+  }
+
+  gl::Program build_resolve(ResolveSort sort, unsigned max_frags) {
+    Defines d = resolve_defines(sort, max_frags);
     auto prog = ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}}, d);
     glProgramUniform3f(prog.get(), glGetUniformLocation(prog.get(), "background"), scene_.background.r,
                        scene_.background.g, scene_.background.b);
@@ -424,8 +432,9 @@ class ExactCase final : public OitCase {
   FullscreenTriangle quad_;
   std::unique_ptr<GpuMesh> mesh_;
   glm::mat4 view_proj_;
-  std::unique_ptr<FragmentLists> lists_;
-  gl::Program capture_, base_, count_, mask_;
+  std::unique_ptr<FragmentStorage> lists_;
+  std::vector<gl::Program> capture_;  // one program per capture pass of the storage
+  gl::Program base_, count_, mask_;
   gl::Buffer histogram_;
   std::vector<unsigned> interval_tops_, interval_pixels_;
   std::vector<std::optional<gl::Program>> interval_programs_;
@@ -433,7 +442,7 @@ class ExactCase final : public OitCase {
   BmaAutoChoice auto_choice_;
   unsigned max_frags_ = 0;
   int overflow_rerenders_ = 0, intervals_run_ = 0;
-  std::vector<double> capture_ms_;
+  std::vector<double> capture_ms_, count_ms_;  // PPPA: count_ms_ is the count pass + prefix sum
   HostLists host_;
   std::vector<float> native_out_;
 };

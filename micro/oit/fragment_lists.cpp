@@ -9,7 +9,10 @@
 namespace oitbench::oit {
 
 FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool with_counts)
-    : width_(width), height_(height), with_counts_(with_counts), heads_(gl::make_texture(GL_TEXTURE_2D)),
+    : width_(width),
+      height_(height),
+      with_counts_(with_counts),
+      heads_(gl::make_texture(GL_TEXTURE_2D)),
       counter_(gl::make_buffer()) {
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels_);
   glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
@@ -23,8 +26,8 @@ FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool wi
 
 void FragmentLists::allocate(size_t pool) {
   if (pool > static_cast<size_t>(max_texels_))
-    throw Unsupported("linked-list node pool of " + std::to_string(pool) + " fragments exceeds GL_MAX_TEXTURE_BUFFER_SIZE (" +
-                      std::to_string(max_texels_) + " texels)");
+    throw Unsupported("linked-list node pool of " + std::to_string(pool) +
+                      " fragments exceeds GL_MAX_TEXTURE_BUFFER_SIZE (" + std::to_string(max_texels_) + " texels)");
   pool_ = pool;
   nodes_ = gl::make_buffer();
   next_ = gl::make_buffer();
@@ -44,7 +47,19 @@ void FragmentLists::bind() const {
   glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, kCounterBinding, counter_.get());
 }
 
-int FragmentLists::capture(GLuint program, const std::function<void()>& draw) {
+std::vector<Defines> FragmentLists::capture_passes() const {
+  if (with_counts_) return {{{"STORAGE_COUNTS", ""}}};
+  return {{}};
+}
+
+size_t FragmentLists::bytes() const {
+  // Nodes (8-byte fragment + 4-byte next), the heads (and counts), the counter.
+  size_t pixels = static_cast<size_t>(width_) * height_;
+  return pool_ * 12 + pixels * 4 * (with_counts_ ? 2 : 1) + sizeof(unsigned);
+}
+
+int FragmentLists::capture(const std::vector<GLuint>& programs, const std::function<void()>& draw) {
+  const GLuint program = programs.at(0);
   int rerenders = 0;
   const unsigned end = kListEnd, zero = 0;
   // Shrinking happens before a frame, never after one: the lists just captured live in the pool.

@@ -13,7 +13,7 @@
 
 namespace oitbench::oit {
 
-class FragmentLists;
+class FragmentStorage;
 
 class OitCase : public CaseInstance {
  public:
@@ -23,7 +23,7 @@ class OitCase : public CaseInstance {
   // The last run()'s image, RGBA32F: the colour where alpha > 0, the scene's background elsewhere.
   virtual GLuint result_texture() = 0;
   // The fragments the last run() captured, or nullptr where the technique keeps none on the GPU.
-  virtual const FragmentLists* fragments() const { return nullptr; }
+  virtual const FragmentStorage* fragments() const { return nullptr; }
   // MAX_FRAGS in use (0 where the technique has none).
   virtual unsigned max_frags() const { return 0; }
 };

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "oit/fragment_lists.hpp"
+#include "oit/fragment_storage.hpp"
 
 namespace oitbench::oit {
 

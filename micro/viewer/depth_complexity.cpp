@@ -3,13 +3,13 @@
 #include <array>
 
 #include "core/gl.hpp"
-#include "oit/fragment_lists.hpp"
+#include "oit/fragment_storage.hpp"
 
 namespace oitbench::viewer {
 
 namespace {
-// Beside the storage's own units and bindings (micro/oit/fragment_lists.hpp uses images 0-3 and
-// atomic counter / storage buffer 0).
+// Beside the storage's own units and bindings (micro/oit/fragment_storage.hpp: images 0-3, atomic
+// counter 0, storage buffer 2).
 constexpr GLuint kDepthCountsUnit = 4, kDepthStatsBinding = 1;
 }  // namespace
 
@@ -21,7 +21,7 @@ DepthComplexity::DepthComplexity(const ShaderLibrary& shaders)
   glNamedBufferStorage(stats_.get(), 2 * sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
 
-DepthComplexity::Counts DepthComplexity::count(const oit::FragmentLists& lists, const Defines& storage_defines,
+DepthComplexity::Counts DepthComplexity::count(const oit::FragmentStorage& lists, const Defines& storage_defines,
                                                int width, int height) {
   if (!count_ || storage_defines != count_defines_) {
     count_ = shaders_.build({{GL_COMPUTE_SHADER, "viewer/depth_count.comp"}}, storage_defines);

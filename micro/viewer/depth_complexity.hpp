@@ -8,7 +8,7 @@
 #include "core/shader.hpp"
 
 namespace oitbench::oit {
-class FragmentLists;
+class FragmentStorage;
 }
 
 namespace oitbench::viewer {
@@ -23,7 +23,7 @@ class DepthComplexity {
   };
   // Counts the fragments `lists` holds (a width x height capture) and reads back peak and total.
   // `storage_defines` select the storage layout the count shader walks (compiled on first use).
-  Counts count(const oit::FragmentLists& lists, const Defines& storage_defines, int width, int height);
+  Counts count(const oit::FragmentStorage& lists, const Defines& storage_defines, int width, int height);
   // The last count in false colour over the bound framebuffer's viewport.
   void draw(int fb_width, int fb_height) const;
 

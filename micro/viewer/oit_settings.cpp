@@ -102,7 +102,6 @@ std::string OitSettings::scale_max_frags(bool up, unsigned in_use, bool& changed
 
 std::string OitSettings::step_capture(bool& changed) {
   changed = false;
-  if (!has_capture_storage()) return "C: this build's oit experiment has one capture storage (lists)";
   const auto& all = spec("capture").allowed;
   if (all.size() < 2) return "C: the only capture storage is " + get("capture");
   auto it = std::find(all.begin(), all.end(), get("capture"));

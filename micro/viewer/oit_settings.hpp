@@ -24,7 +24,7 @@ class OitSettings {
   void set(const std::string& name, const std::string& value);  // checked
 
   const std::string& technique() const { return params_.get("technique"); }
-  bool is_exact() const;        // one of the exact techniques (a linked-list capture the viewer can walk)
+  bool is_exact() const;        // one of the exact techniques (a capture, PPLL or PPPA, the viewer can walk)
   bool uses_max_frags() const;  // MAX_FRAGS means something to the resolve (not CPU-NATIVE)
   bool uses_nodes() const;      // an approximate technique with per-pixel node arrays
 
@@ -35,7 +35,6 @@ class OitSettings {
   // x2 (up) or /2 of MAX_FRAGS (0 = auto, as the parameter; `in_use` is what auto chose) or, for
   // the approximate array techniques, of their node count.
   std::string scale_max_frags(bool up, unsigned in_use, bool& changed);
-  bool has_capture_storage() const { return has_param("capture"); }
   std::string step_capture(bool& changed);
 
  private:

@@ -19,7 +19,7 @@
 
 #include "core/presets.hpp"
 #include "core/runner.hpp"
-#include "oit/fragment_lists.hpp"
+#include "oit/fragment_storage.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/scene.hpp"
 #include "viewer/depth_complexity.hpp"
@@ -39,7 +39,7 @@ const char* key_help() {
          "  T / shift+T next / previous technique (all of the oit experiment's, exact and approximate)\n"
          "  B           BASE-X <-> BMA-X (IS, IMS, RBS-L)\n"
          "  M / shift+M MAX_FRAGS x2 / /2 (below 1: auto); nodes for MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT\n"
-         "  C           next capture storage (the oit parameter 'capture', where the build has it)\n"
+         "  C           next capture storage (the oit parameter 'capture': PPLL linked lists, PPPA packed arrays)\n"
          "  Z           depth complexity in false colour (blue 1 -> green -> red at the peak, log scale)\n"
          "  P           screenshot (--screenshot PATH, else oitbench-SCENE-TECHNIQUE-N.png)\n"
          "  V           save the camera as a view in the scene file (--save-view NAME, else view-1, view-2, ...)\n"
@@ -389,9 +389,9 @@ class Viewer {
       total += ms;
     }
     pass_ms_.add("total", total);
-    if (const oit::FragmentLists* lists = case_->fragments();
+    if (const oit::FragmentStorage* lists = case_->fragments();
         lists && (depth_view_ || !counts_ || frame % kCountEvery == 0))
-      counts_ = depth_->count(*lists, Defines{}, case_size_.x, case_size_.y);  // linked lists: no storage define
+      counts_ = depth_->count(*lists, lists->defines(), case_size_.x, case_size_.y);
   }
 
   // The frame into the window's back buffer: the image (or the depth view) and the overlay.
@@ -436,10 +436,8 @@ class Viewer {
       tech += "   nodes " + settings_.get("nodes");
     }
     if (settings_.is_exact())
-      tech += "   storage: " + (settings_.has_capture_storage() ? settings_.get("capture") : std::string("lists"));
+      tech += "   capture: " + settings_.get("capture");
     lines.push_back({tech});
-    if (!settings_.has_capture_storage() && settings_.is_exact())
-      lines.push_back({"  (C: no 'capture' parameter in this build: lists only)", grey});
 
     std::string passes;
     for (const auto& [name, ms] : pass_ms_.medians()) passes += name + " " + fixed(ms, ms < 10 ? 2 : 1) + "  ";

@@ -2,7 +2,7 @@
 // host skips the intervals with no pixels. One invocation per pixel; histogram[i] for interval i.
 #include "../common/oitbench.glsl"
 #define STORAGE_COUNTS
-#include "storage/linked_list.glsl"
+#include "storage/fragments.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) buffer Histogram { uint histogram[32]; };
 void main() {

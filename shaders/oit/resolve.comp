@@ -4,7 +4,7 @@
 // Groups are CS_GROUP_X x CS_GROUP_Y pixels; the default is 8-wide rows (8x1): a stream-form
 // resolve was miscompiled here with 4x4 groups (PLATFORM.md). The sorts load, then sort.
 #include "../common/oitbench.glsl"
-#include "storage/linked_list.glsl"
+#include "storage/fragments.glsl"
 
 layout(local_size_x = CS_GROUP_X, local_size_y = CS_GROUP_Y) in;
 layout(binding = 4, rgba32f) uniform writeonly image2D resolved;
@@ -15,7 +15,7 @@ uniform int zero;  // always 0 (fault hooks)
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, imageSize(headPointers)))) return;
+  if (any(greaterThanEqual(p, FRAG_SCREEN_SIZE()))) return;
   uint head = FRAG_BEGIN(p);
   if (!FRAG_VALID(head)) return;
   vec3 c = resolve_pixel(head);

@@ -3,7 +3,7 @@
 // target: rgb is the composited colour, alpha counts how often the pixel was resolved (BMA must
 // resolve each covered pixel exactly once).
 #include "../common/oitbench.glsl"
-#include "storage/linked_list.glsl"
+#include "storage/fragments.glsl"
 
 // Early tests: BMA's stencil mask must stop an interval's program before it runs on the other
 // intervals' pixels; without this a driver may test the stencil after the shader (it reads

@@ -230,18 +230,15 @@ TEST_F(OitSettingsTest, KeysStepTechniquesToggleBmaAndScaleMaxFrags) {
   EXPECT_EQ(s.get("nodes"), "64");
 }
 
-TEST_F(OitSettingsTest, CaptureStorageKeyFollowsTheExperiment) {
+TEST_F(OitSettingsTest, CaptureStorageKeyCyclesThroughTheExperimentsLayouts) {
   OitSettings s(registry_, {});
-  bool changed = true;
-  std::string note = s.step_capture(changed);
-  if (s.has_capture_storage()) {
-    std::string before = s.get("capture");
-    EXPECT_TRUE(changed);
-    EXPECT_NE(s.get("capture"), before);
-  } else {
-    EXPECT_FALSE(changed);
-    EXPECT_NE(note.find("lists"), std::string::npos);
-  }
+  EXPECT_EQ(s.get("capture"), "PPLL");
+  bool changed = false;
+  EXPECT_EQ(s.step_capture(changed), "capture storage PPPA");
+  EXPECT_TRUE(changed);
+  EXPECT_EQ(s.get("capture"), "PPPA");
+  s.step_capture(changed);
+  EXPECT_EQ(s.get("capture"), "PPLL");
 }
 
 }  // namespace
