@@ -14,7 +14,6 @@ FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool wi
       with_counts_(with_counts),
       heads_(gl::make_texture(GL_TEXTURE_2D)),
       counter_(gl::make_buffer()) {
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels_);
   glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
   if (with_counts) {
     counts_ = gl::make_texture(GL_TEXTURE_2D);
@@ -25,24 +24,15 @@ FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool wi
 }
 
 void FragmentLists::allocate(size_t pool) {
-  if (pool > static_cast<size_t>(max_texels_))
-    throw Unsupported("linked-list node pool of " + std::to_string(pool) +
-                      " fragments exceeds GL_MAX_TEXTURE_BUFFER_SIZE (" + std::to_string(max_texels_) + " texels)");
+  nodes_ = make_texel_buffer(pool, GL_RG32UI, 8, "linked-list node pool");
+  next_ = make_texel_buffer(pool, GL_R32UI, 4, "linked-list node pool");
   pool_ = pool;
-  nodes_ = gl::make_buffer();
-  next_ = gl::make_buffer();
-  glNamedBufferStorage(nodes_.get(), static_cast<GLsizeiptr>(pool * 8), nullptr, 0);
-  glNamedBufferStorage(next_.get(), static_cast<GLsizeiptr>(pool * 4), nullptr, 0);
-  nodes_view_ = gl::make_texture(GL_TEXTURE_BUFFER);
-  next_view_ = gl::make_texture(GL_TEXTURE_BUFFER);
-  glTextureBuffer(nodes_view_.get(), GL_RG32UI, nodes_.get());
-  glTextureBuffer(next_view_.get(), GL_R32UI, next_.get());
 }
 
 void FragmentLists::bind() const {
   glBindImageTexture(kHeadsUnit, heads_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-  glBindImageTexture(kNodesUnit, nodes_view_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
-  glBindImageTexture(kNextUnit, next_view_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  glBindImageTexture(kNodesUnit, nodes_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
+  glBindImageTexture(kNextUnit, next_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   if (with_counts_) glBindImageTexture(kCountsUnit, counts_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, kCounterBinding, counter_.get());
 }
@@ -107,8 +97,8 @@ HostLists FragmentLists::read_back() const {
   h.nodes.resize(n);
   h.next.resize(n);
   if (n) {
-    glGetNamedBufferSubData(nodes_.get(), 0, static_cast<GLsizeiptr>(n * 8), h.nodes.data());
-    glGetNamedBufferSubData(next_.get(), 0, static_cast<GLsizeiptr>(n * 4), h.next.data());
+    glGetNamedBufferSubData(nodes_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 8), h.nodes.data());
+    glGetNamedBufferSubData(next_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 4), h.next.data());
   }
   return h;
 }

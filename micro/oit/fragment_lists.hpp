@@ -31,9 +31,9 @@ class FragmentLists final : public FragmentStorage {
   bool with_counts_;
   size_t pool_ = 0, fragments_ = 0;
   size_t shrink_to_ = 0;  // pool for the next frame when this one needed much less
-  GLint max_texels_ = 0;
-  gl::Texture heads_, counts_, nodes_view_, next_view_;
-  gl::Buffer nodes_, next_, counter_;
+  gl::Texture heads_, counts_;
+  TexelBuffer nodes_, next_;
+  gl::Buffer counter_;
 };
 
 }  // namespace oitbench::oit

@@ -18,6 +18,18 @@ CaptureStorage parse_capture_storage(const std::string& name) {
   throw std::invalid_argument("unknown capture storage '" + name + "' (PPLL, PPPA)");
 }
 
+TexelBuffer make_texel_buffer(size_t texels, GLenum format, size_t texel_bytes, const std::string& what) {
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  if (texels > static_cast<size_t>(max_texels))
+    throw Unsupported(what + " of " + std::to_string(texels) + " fragments exceeds GL_MAX_TEXTURE_BUFFER_SIZE (" +
+                      std::to_string(max_texels) + " texels)");
+  TexelBuffer b{gl::make_buffer(), gl::make_texture(GL_TEXTURE_BUFFER)};
+  glNamedBufferStorage(b.buffer.get(), static_cast<GLsizeiptr>(texels * texel_bytes), nullptr, 0);
+  glTextureBuffer(b.view.get(), format, b.buffer.get());
+  return b;
+}
+
 std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,
                                                        bool with_counts) {
   if (kind == CaptureStorage::PPPA) return std::make_unique<PackedArrays>(ctx, initial_pool);

@@ -58,6 +58,14 @@ class FragmentStorage {
   virtual HostLists read_back() const = 0;
 };
 
+// A buffer of `texels` seen as an image buffer of `format` (`texel_bytes` each): the fragments of
+// both layouts, PPLL's next pointers. Throws Unsupported past GL_MAX_TEXTURE_BUFFER_SIZE, naming `what`.
+struct TexelBuffer {
+  gl::Buffer buffer;
+  gl::Texture view;
+};
+TexelBuffer make_texel_buffer(size_t texels, GLenum format, size_t texel_bytes, const std::string& what);
+
 // `with_counts`: PPLL also counts each pixel's fragments (BMA); PPPA always does.
 std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,
                                                        bool with_counts);

@@ -12,7 +12,6 @@ PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool)
       counts_(gl::make_texture(GL_TEXTURE_2D)),
       offsets_(gl::make_buffer()),
       scan_(ctx, static_cast<size_t>(ctx.width()) * ctx.height()) {
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels_);
   glTextureStorage2D(counts_.get(), 1, GL_R32UI, width_, height_);
   glNamedBufferStorage(offsets_.get(),
                        static_cast<GLsizeiptr>(static_cast<size_t>(width_) * height_ * sizeof(unsigned)), nullptr, 0);
@@ -20,18 +19,12 @@ PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool)
 }
 
 void PackedArrays::allocate(size_t pool) {
-  if (pool > static_cast<size_t>(max_texels_))
-    throw Unsupported("packed per-pixel arrays of " + std::to_string(pool) +
-                      " fragments exceed GL_MAX_TEXTURE_BUFFER_SIZE (" + std::to_string(max_texels_) + " texels)");
+  nodes_ = make_texel_buffer(pool, GL_RG32UI, 8, "packed per-pixel arrays");
   pool_ = pool;
-  nodes_ = gl::make_buffer();
-  glNamedBufferStorage(nodes_.get(), static_cast<GLsizeiptr>(pool * 8), nullptr, 0);
-  nodes_view_ = gl::make_texture(GL_TEXTURE_BUFFER);
-  glTextureBuffer(nodes_view_.get(), GL_RG32UI, nodes_.get());
 }
 
 void PackedArrays::bind() const {
-  glBindImageTexture(kNodesUnit, nodes_view_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
+  glBindImageTexture(kNodesUnit, nodes_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
   glBindImageTexture(kCountsUnit, counts_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOffsetsBinding, offsets_.get());
 }
@@ -78,7 +71,7 @@ HostLists PackedArrays::read_back() const {
   glGetNamedBufferSubData(offsets_.get(), 0, static_cast<GLsizeiptr>(pixels * 4), ends.data());
   const size_t n = std::min(fragments_, pool_);
   h.nodes.resize(n);
-  if (n) glGetNamedBufferSubData(nodes_.get(), 0, static_cast<GLsizeiptr>(n * 8), h.nodes.data());
+  if (n) glGetNamedBufferSubData(nodes_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 8), h.nodes.data());
   // As lists: pixel p's fragments are the slots [first, first + count) of the scan.
   h.heads.assign(pixels, kListEnd);
   h.next.assign(n, kListEnd);

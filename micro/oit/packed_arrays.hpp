@@ -37,9 +37,9 @@ class PackedArrays final : public FragmentStorage {
   void allocate(size_t pool);
   int width_, height_;
   size_t pool_ = 0, fragments_ = 0;
-  GLint max_texels_ = 0;
-  gl::Texture counts_, nodes_view_;
-  gl::Buffer nodes_, offsets_;
+  gl::Texture counts_;
+  TexelBuffer nodes_;
+  gl::Buffer offsets_;
   PrefixSum scan_;
   double last_count_ms_ = 0;
 };
