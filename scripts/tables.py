@@ -148,43 +148,51 @@ STAND_INS = {"powerplant": "enginegrid", "atrium": "house"}
 
 
 class PaperTable:
-    def __init__(self, name, source, table, title, baseline, kind="times", any_scene=False):
+    def __init__(self, name, source, table, title, baseline, kind="times", any_scene=False, presets=()):
         self.name, self.source, self.table, self.title, self.baseline, self.kind = \
             name, source, table, title, baseline, kind
         # The paper's scenes (powerplant, village, ...) are not shipped: compare with the median over ours.
         self.any_scene = any_scene
+        # The presets that rerun this table: where the given CSVs hold rows of one of them, only those
+        # rows count, so runs of other grids (other resolutions, other block sizes) never mix in.
+        self.presets = presets
 
 
 TABLES = [
     PaperTable("bruell-A.1", "bruell2018-thesis", "A.1", "Brüll 2018 A.1: index assignment in naive insertion sort",
-               "naive insertion, dynamic index assignment: direct"),
+               "naive insertion, dynamic index assignment: direct", presets=("bruell2018-sorting",)),
     PaperTable("bruell-A.2", "bruell2018-thesis", "A.2", "Brüll 2018 A.2: MLAB insertion with and without early out",
-               "MLAB insertion x{}, no early out"),
+               "MLAB insertion x{}, no early out", presets=("bruell2018-sorting",)),
     PaperTable("bruell-A.3", "bruell2018-thesis", "A.3", "Brüll 2018 A.3: bubble sort with and without early out",
-               "bubble sort, no early out"),
-    PaperTable("bruell-A.4", "bruell2018-thesis", "A.4", "Brüll 2018 A.4: stencil-masked MLAB", "MLAB no stencil"),
-    PaperTable("bruell-A.5", "bruell2018-thesis", "A.5", "Brüll 2018 A.5: stencil-masked UMLAB", "UMLAB no stencil"),
-    PaperTable("bruell-4.1", "bruell2018-thesis", "4.1", "Brüll 2018 4.1: MLAB storage layouts", "MLAB ssbo"),
+               "bubble sort, no early out", presets=("bruell2018-sorting",)),
+    PaperTable("bruell-A.4", "bruell2018-thesis", "A.4", "Brüll 2018 A.4: stencil-masked MLAB", "MLAB no stencil",
+               presets=("bruell2018-stencil",)),
+    PaperTable("bruell-A.5", "bruell2018-thesis", "A.5", "Brüll 2018 A.5: stencil-masked UMLAB", "UMLAB no stencil",
+               presets=("bruell2018-stencil",)),
+    PaperTable("bruell-4.1", "bruell2018-thesis", "4.1", "Brüll 2018 4.1: MLAB storage layouts", "MLAB ssbo",
+               presets=("bruell2018-storage",)),
     PaperTable("bruell-5.1", "bruell2018-thesis", "5.1", "Brüll 2018 5.1: MLAB vs UMLAB (ours: median over our scenes)",
-               "MLAB", any_scene=True),
+               "MLAB", any_scene=True, presets=("bruell2018-approx",)),
     PaperTable("bruell-6.1", "bruell2018-thesis", "6.1", "Brüll 2018 6.1: AT vs UAT (ours: median over our scenes)",
-               "AT", any_scene=True),
+               "AT", any_scene=True, presets=("bruell2018-approx",)),
     PaperTable("bruell-6.2", "bruell2018-thesis", "6.2", "Brüll 2018 6.2: AT vs LAAT (ours: median over our scenes)",
-               "AT", any_scene=True),
+               "AT", any_scene=True, presets=("bruell2018-approx",)),
     PaperTable("bruell-6.3", "bruell2018-thesis", "6.3", "Brüll 2018 6.3: HAT vs UHAT (ours: median over our scenes)",
-               "HAT", any_scene=True),
+               "HAT", any_scene=True, presets=("bruell2018-approx",)),
     PaperTable("sintorn-poster", "sintorn-hair-poster", "results",
                "Sintorn et al. poster: 256-slice radix sort of hair line segments (ours: the lines experiment)",
-               "", kind="lines"),
+               "", kind="lines", presets=("sintorn-lines",)),
     PaperTable("knowles2014-1", "knowles2014-rbs", "1", "Knowles 2014 table 1: speedups over BASE-IS, all scenes",
-               "BASE-IS", kind="summary"),
-    PaperTable("knowles2014-2", "knowles2014-rbs", "2", "Knowles 2014 table 2: total and resolve times", "BASE-IS"),
+               "BASE-IS", kind="summary", presets=("knowles2014",)),
+    PaperTable("knowles2014-2", "knowles2014-rbs", "2", "Knowles 2014 table 2: total and resolve times", "BASE-IS",
+               presets=("knowles2014",)),
     PaperTable("knowles2014-3", "knowles2014-rbs", "3", "Knowles 2014 table 3: speedups over BASE-IS", "BASE-IS",
-               kind="speedups"),
+               kind="speedups", presets=("knowles2014",)),
     PaperTable("knowles2013-1", "knowles2013-bma", "1",
                "Knowles 2013 table 1: BMA speedup per interval (ours: BMA-IS over BASE-IS at that size)", "OIT",
-               kind="speedups"),
-    PaperTable("knowles2013-2", "knowles2013-bma", "2", "Knowles 2013 table 2: OIT and BMA-OIT times", "OIT"),
+               kind="speedups", presets=("knowles2013",)),
+    PaperTable("knowles2013-2", "knowles2013-bma", "2", "Knowles 2013 table 2: OIT and BMA-OIT times", "OIT",
+               presets=("knowles2013",)),
 ]
 
 
@@ -216,14 +224,23 @@ def load_paper(paper_dir):
 class Ours:
     """Our valid rows, by experiment, with the words that identify their technique."""
 
-    def __init__(self, runs):
-        self.rows = []  # (run, row, words)
+    def __init__(self, runs, rows=None):
+        self.rows = [] if rows is None else rows  # (run, row, words, params)
         for run in runs:
             for exp in run.experiments():
                 params = run.params(exp)
                 for r in run.rows_of(exp):
+                    # The papers captured into per-pixel linked lists: packed-array rows (capture=PPPA)
+                    # are our extension and stay out of their tables.
+                    if r.get("capture", "") not in ("", "PPLL"):
+                        continue
                     if oitcsv.is_ok(r) and oitcsv.to_float(r.get("median_ms")) is not None:
                         self.rows.append((run, r, row_words(r, params), params))
+
+    def scoped(self, presets):
+        """Only the rows of `presets` where there are any, else all rows."""
+        mine = [x for x in self.rows if x[1].get("preset", "") in presets]
+        return Ours([], mine) if mine else self
 
     def describe(self, experiment):
         found = [(run, r) for run, r, _, _ in self.rows if r["experiment"] == experiment]
@@ -310,6 +327,7 @@ def baseline_name(table, technique):
 
 
 def build_rows(table, paper_rows, ours):
+    ours = ours.scoped(table.presets)
     rows = [r for r in paper_rows if r["source"] == table.source and r["table"] == table.table and r["technique"]]
     out = []
     if table.kind == "summary":
@@ -402,6 +420,7 @@ def summary_rows(table, rows, ours):
 
 
 def render_markdown(table, rows, ours, paper_rows):
+    ours = ours.scoped(table.presets)
     gpu = next((r["gpu"] for r in paper_rows if r["source"] == table.source and r["table"] == table.table), "?")
     res = next((r["resolution"] for r in paper_rows if r["source"] == table.source and r["table"] == table.table
                 and r["resolution"]), "")

@@ -70,6 +70,28 @@ class TablesMini(TempDirTest):
         self.assertAlmostEqual(float(rows[("BMA-RBS-L", "resolve_time")]["ours_ms"]), 5.0, places=3)
         self.assertEqual(rows[("CUDA-IS", "total_time")]["ours_ms"], "")  # CUDA: never ours
 
+    def test_a_tables_own_preset_wins_and_packed_arrays_stay_out(self):
+        # Two runs of BASE-IS on planes fwd at MAX_FRAGS 128: the knowles2014 preset's and another grid's
+        # (other resolution); plus a PPPA row. The table must take the preset's row only.
+        rows = [{"experiment": "oit", "variant": "base-is", "scene": "planes", "view": "Fwd", "max_frags": 128,
+                 "pass": "total", "median_ms": ms, "preset": preset, "capture": capture}
+                for ms, preset, capture in ((10.0, "knowles2014", "PPLL"), (500.0, "oit-scale", "PPLL"),
+                                            (1.0, "knowles2014", "PPPA"))]
+        run = syn.write_summary(self.path("mixed.csv"), rows, params=["scene", "view", "max_frags", "capture"])
+        proc = run_script("tables.py", run, "--paper", self.path("paper"), "--table", "knowles2014-2",
+                          "--format", "csv")
+        got = {(r["technique"], r["metric"]): r for r in csv.DictReader(io.StringIO(proc.stdout))}
+        self.assertAlmostEqual(float(got[("BASE-IS", "total_time")]["ours_ms"]), 10.0)
+        self.assertEqual(got[("BASE-IS", "total_time")]["ours_cases"], "1")
+        # Without any row of the table's preset, every PPLL row counts (the median of 10 and 500).
+        for r in rows:
+            r["preset"] = ""
+        run = syn.write_summary(self.path("unscoped.csv"), rows, params=["scene", "view", "max_frags", "capture"])
+        proc = run_script("tables.py", run, "--paper", self.path("paper"), "--table", "knowles2014-2",
+                          "--format", "csv")
+        got = {(r["technique"], r["metric"]): r for r in csv.DictReader(io.StringIO(proc.stdout))}
+        self.assertAlmostEqual(float(got[("BASE-IS", "total_time")]["ours_ms"]), 255.0)
+
     def test_stand_in_scenes_sit_beside_the_papers_models(self):
         # The power plant's V1 has MAX_FRAGS 512 in the paper; our engine grid's V1 has its own 256.
         with open(self.path("paper/mini.csv"), "a", encoding="utf-8") as f:
