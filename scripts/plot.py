@@ -496,6 +496,30 @@ def figure_name(experiment, run, ambiguous):
     return f"{experiment}-{run.label}" if ambiguous else experiment
 
 
+def draw(run, experiment):
+    """One experiment of one run as a figure, with the note of what was not plotted.
+    Returns (ExperimentData, Figure, lines not plotted)."""
+    data = ExperimentData(run, experiment)
+    lines = invalid_lines(data)
+    fig = plot_experiment(data)
+    add_invalid_note(fig, lines)
+    return data, fig, lines
+
+
+def save(fig, stem, formats=("png", "svg")):
+    """Writes `stem`.FORMAT for each format and closes the figure. The files depend only on the data:
+    SVG ids come from a fixed salt and no date is written, so a rerun on the same CSV changes nothing."""
+    written = []
+    with plt.rc_context({"svg.hashsalt": "oitbench"}):
+        for fmt in formats:
+            path = f"{stem}.{fmt}"
+            metadata = {"Date": None} if fmt in ("svg", "pdf") else None
+            fig.savefig(path, dpi=120, bbox_inches="tight", metadata=metadata)
+            written.append(path)
+    plt.close(fig)
+    return written
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("csv", nargs="+", help="summary CSVs written by `oitbench run --out`")
@@ -517,21 +541,14 @@ def main(argv=None):
     for run in runs:
         for exp in run.experiments():
             count[exp] = count.get(exp, 0) + 1
-    written = []
+    formats = [f.strip() for f in args.format.split(",") if f.strip()]
     for run in runs:
         for exp in run.experiments():
-            data = ExperimentData(run, exp)
-            lines = invalid_lines(data)
+            data, fig, lines = draw(run, exp)
             for line in lines:
                 print(f"{run.label}: {exp}: not plotted: {line}")
-            fig = plot_experiment(data)
-            add_invalid_note(fig, lines)
             name = figure_name(exp, run, count[exp] > 1)
-            for fmt in [f.strip() for f in args.format.split(",") if f.strip()]:
-                path = os.path.join(out_dir, f"{name}.{fmt}")
-                fig.savefig(path, dpi=120, bbox_inches="tight")
-                written.append(path)
-            plt.close(fig)
+            save(fig, os.path.join(out_dir, name), formats)
             print(f"{run.label}: {exp}: {len(data.ok)} valid rows, {len(lines)} not plotted -> "
                   f"{os.path.join(out_dir, name)}.{{{args.format}}}")
     return 0
