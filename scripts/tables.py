@@ -385,14 +385,11 @@ def lines_rows(table, rows, ours):
     return out
 
 
-def render_lines(table, rows):
-    lines = [f"### {table.title}", "",
-             "Poster: a GPU of its day. Ours: frames per second of the `lines` experiment (1000 / total median ms).", "",
-             "| model | segments | poster fps | ours fps (slices) | ours fps (per-fragment exact) |",
-             "|---|---:|---:|---:|---:|"]
-    for r in rows:
-        lines.append(f"| {r['scene']} | {r['size']} | {fmt(r['paper'])} | {fmt(r['ours_ms'])} | {fmt(r['ours_speedup'])} |")
-    return "\n".join(lines) + "\n"
+def lines_layout(table, rows):
+    header = ["model", "segments", "poster fps", "ours fps (slices)", "ours fps (per-fragment exact)"]
+    cells = [[r["scene"], r["size"], fmt(r["paper"]), fmt(r["ours_ms"]), fmt(r["ours_speedup"])] for r in rows]
+    notes = ["Poster: a GPU of its day. Ours: frames per second of the `lines` experiment (1000 / total median ms)."]
+    return TableLayout(table.title, notes, header, [False] + [True] * 4, cells, [r["ours_cases"] > 0 for r in rows])
 
 
 def summary_rows(table, rows, ours):
@@ -419,7 +416,18 @@ def summary_rows(table, rows, ours):
     return out
 
 
-def render_markdown(table, rows, ours, paper_rows):
+class TableLayout:
+    """A table as text cells, whatever it is printed as: title, notes (Markdown: `code`), header, which
+    columns are numbers (right-aligned), the cells, and for each row whether any of ours is in it."""
+
+    def __init__(self, title, notes, header, numeric, cells, ours_found):
+        self.title, self.notes, self.header, self.numeric, self.cells, self.ours_found = \
+            title, notes, header, numeric, cells, ours_found
+
+
+def table_layout(table, rows, ours, paper_rows):
+    if table.kind == "lines":
+        return lines_layout(table, rows)
     ours = ours.scoped(table.presets)
     gpu = next((r["gpu"] for r in paper_rows if r["source"] == table.source and r["table"] == table.table), "?")
     res = next((r["resolution"] for r in paper_rows if r["source"] == table.source and r["table"] == table.table
@@ -427,11 +435,9 @@ def render_markdown(table, rows, ours, paper_rows):
     exp = TECHNIQUES.get(table.baseline.format("16"), TECHNIQUES.get("BASE-IS")).experiment
     mine = ours.describe(exp)
     baseline_text = ("the same scene's no-early-out row" if "{}" in table.baseline else table.baseline)
-    lines = [f"### {table.title}", "",
-             f"Paper: {gpu}{', ' + res if res else ''}. Ours: `{exp}` on " +
+    notes = [f"Paper: {gpu}{', ' + res if res else ''}. Ours: `{exp}` on " +
              (mine if mine else f"— (no valid `{exp}` rows in the given CSVs)") + ".",
-             f"Speedup = time of {baseline_text} / time (paper and ours alike).",
-             ""]
+             f"Speedup = time of {baseline_text} / time (paper and ours alike)."]
     cols = [("scene", "scene"), ("view", "view"), ("size", "size"), ("technique", "technique"),
             ("metric", "metric")]
     cols = [c for c in cols if len({r[c[0]] for r in rows}) > 1 or c[0] == "technique"]
@@ -441,19 +447,28 @@ def render_markdown(table, rows, ours, paper_rows):
     else:
         value_cols = [("paper_speedup", "paper speedup"), ("ours_speedup", "ours speedup")]
     header = [name for _, name in cols] + [name for _, name in value_cols]
-    lines.append("| " + " | ".join(header) + " |")
-    lines.append("|" + "|".join("---" for _ in cols) + "|" + "|".join("---:" for _ in value_cols) + "|")
+    cells = []
     for r in rows:
-        cells = [r[k] for k, _ in cols]
+        line = [str(r[k]) for k, _ in cols]
         for k, _ in value_cols:
             v = r[k]
             if k == "paper" and v is not None:
-                cells.append(f"{fmt(v, 4)} {r['unit']}")
+                line.append(f"{fmt(v, 4)} {r['unit']}")
             elif k.endswith("speedup"):
-                cells.append(f"{fmt(v)}x" if v is not None else DASH)
+                line.append(f"{fmt(v)}x" if v is not None else DASH)
             else:
-                cells.append(fmt(v, 4))
-        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+                line.append(fmt(v, 4))
+        cells.append(line)
+    return TableLayout(table.title, notes, header, [False] * len(cols) + [True] * len(value_cols), cells,
+                       [r["ours_cases"] > 0 for r in rows])
+
+
+def render_markdown(table, rows, ours, paper_rows):
+    layout = table_layout(table, rows, ours, paper_rows)
+    lines = [f"### {layout.title}", ""] + layout.notes + [""]
+    lines.append("| " + " | ".join(layout.header) + " |")
+    lines.append("|" + "|".join("---:" if n else "---" for n in layout.numeric) + "|")
+    lines += ["| " + " | ".join(line) + " |" for line in layout.cells]
     return "\n".join(lines) + "\n"
 
 
@@ -513,8 +528,6 @@ def main(argv=None):
             for r in rows:
                 w.writerow({k: ("" if v is None else (f"{v:.6g}" if isinstance(v, float) else v))
                             for k, v in r.items()})
-        elif t.kind == "lines":
-            print(render_lines(t, rows))
         else:
             print(render_markdown(t, rows, ours, paper_rows))
     return 0
