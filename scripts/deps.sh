@@ -12,6 +12,7 @@ PACKAGES=(
   libassimp-dev assimp-testmodels                     # model loading and the stand-in scenes
   libgtest-dev googletest                             # tests
   python3 python3-matplotlib                          # figures, tables, comparisons
+  chromium                                            # the report page is tested in headless chromium
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -61,6 +61,8 @@ def read_csv(path):
         raise ResultsError(f"{path}: cannot read ({e.strerror})") from e
     except csv.Error as e:
         raise ResultsError(f"{path}: not valid CSV ({e})") from e
+    except UnicodeDecodeError as e:
+        raise ResultsError(f"{path}: not a text file (not UTF-8 at byte {e.start})") from e
     return header, rows
 
 
