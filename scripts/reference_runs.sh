@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# Regenerates the reference results on the embedded default (EGL surfaceless; Mesa llvmpipe where there
+# is no GPU) in results/llvmpipe/: every preset in presets/*.json (presets/NAME.csv and NAME_raw.csv),
+# `oitbench info` (info.txt), a few rendered images (images/) and the report page (report/index.html).
+#
+#   scripts/reference_runs.sh                      build, every preset, info, images, report
+#   scripts/reference_runs.sh --only P1,P2         build, those presets, info, report ("images" renders them)
+#   scripts/reference_runs.sh --report-only        the report from the CSVs already there
+#
+# OITBENCH=path/to/oitbench runs that binary instead of building build/oitbench; it reads presets,
+# shaders and scenes from its own source tree unless OITBENCH_PRESETS / OITBENCH_SHADERS / OITBENCH_SCENES
+# say otherwise. Exit codes: 0 everything ran; 1 a preset or a render failed (the others still ran and the
+# report is still written) or the build failed; 2 usage error; 130 interrupted (Ctrl-C stops everything).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+OUT=results/llvmpipe
+PYTHON=/usr/bin/python3
+RENDER_RESOLUTION=256x256
+# name | render arguments: the papers' hard cases (the hairball back to front) with an exact resolve,
+# BMA, one per-pixel-array approximation and a weighted blend, and one view of each other scene.
+RENDERS=(
+  "hairball-rev-BASE-IS|--scene hairball --view rev --technique BASE-IS"
+  "hairball-rev-BMA-RBS-L|--scene hairball --view rev --technique BMA-RBS-L"
+  "hairball-rev-MLAB-8|--scene hairball --view rev --technique MLAB --set nodes=8"
+  "hairball-rev-WBOIT|--scene hairball --view rev --technique WBOIT"
+  "planes-rev-BASE-IS|--scene planes --view rev --technique BASE-IS"
+  "smoke-fwd-BMA-IS|--scene smoke --view fwd --technique BMA-IS"
+  "engine-grid-V1-BASE-IMS|--scene engine-grid --view V1 --technique BASE-IMS"
+)
+
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
+
+mapfile -t ALL_PRESETS < <(for f in presets/*.json; do basename "$f" .json; done)
+only=""
+report_only=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --only) [ $# -ge 2 ] || { echo "reference_runs.sh: --only needs PRESET[,PRESET...]" >&2; exit 2; }
+            only=$2; shift 2 ;;
+    --only=*) only=${1#--only=}; shift ;;
+    --report-only) report_only=1; shift ;;
+    -h|--help) usage; exit 0 ;;
+    *) echo "reference_runs.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
+  esac
+done
+
+presets=("${ALL_PRESETS[@]}")
+render_images=1
+if [ -n "$only" ]; then
+  presets=()
+  render_images=0
+  IFS=, read -r -a wanted <<< "$only"
+  for name in "${wanted[@]}"; do
+    if [ "$name" = images ]; then
+      render_images=1
+    elif [ -f "presets/$name.json" ]; then
+      presets+=("$name")
+    else
+      echo "reference_runs.sh: no preset '$name'; presets: ${ALL_PRESETS[*]} (or 'images')" >&2
+      exit 2
+    fi
+  done
+fi
+
+started=$SECONDS
+say() { printf '[reference %s +%dm%02ds] %s\n' "$(date -u +%H:%M:%S)" $(((SECONDS - started) / 60)) \
+  $(((SECONDS - started) % 60)) "$*"; }
+trap 'echo; say "interrupted: stopping (the finished rows are in the CSVs)"; exit 130' INT
+failed=()
+
+write_report() {
+  say "report: $PYTHON scripts/report.py $OUT -o $OUT/report"
+  "$PYTHON" scripts/report.py "$OUT" -o "$OUT/report"
+  local rc=$?
+  [ $rc -eq 0 ] || failed+=("report (exit $rc)")
+}
+
+finish() {
+  if [ ${#failed[@]} -gt 0 ]; then
+    say "done; failed: ${failed[*]}"
+    exit 1
+  fi
+  say "done: $OUT/report/index.html"
+  exit 0
+}
+
+if [ $report_only -eq 1 ]; then
+  write_report
+  finish
+fi
+
+if [ -z "${OITBENCH:-}" ]; then
+  say "build: scripts/build.sh"
+  scripts/build.sh || { say "the build failed"; exit 1; }
+  OITBENCH=build/oitbench
+fi
+[ -x "$OITBENCH" ] || { echo "reference_runs.sh: $OITBENCH is not an executable (OITBENCH=...)" >&2; exit 2; }
+
+mkdir -p "$OUT/presets"
+i=0
+for name in "${presets[@]}"; do
+  i=$((i + 1))
+  csv=$OUT/presets/$name.csv
+  raw=$OUT/presets/${name}_raw.csv
+  rm -f "$csv" "$raw"  # --out appends to a file with the same header: start from nothing
+  say "preset $i/${#presets[@]}: $name"
+  t0=$SECONDS
+  "$OITBENCH" run --preset "$name" --out "$csv" --raw "$raw"
+  rc=$?
+  [ $rc -eq 130 ] && { say "interrupted during $name"; exit 130; }
+  say "preset $name: exit $rc after $(((SECONDS - t0) / 60))m$(((SECONDS - t0) % 60))s"
+  [ $rc -eq 0 ] || failed+=("$name (exit $rc)")
+done
+
+say "info: $OITBENCH info > $OUT/info.txt"
+"$OITBENCH" info > "$OUT/info.txt" || failed+=("info")
+
+if [ $render_images -eq 1 ]; then
+  rm -rf "$OUT/images"
+  mkdir -p "$OUT/images"
+  for entry in "${RENDERS[@]}"; do
+    name=${entry%%|*}
+    read -r -a render_args <<< "${entry#*|}"
+    say "render $name ($RENDER_RESOLUTION)"
+    "$OITBENCH" render "${render_args[@]}" --resolution "$RENDER_RESOLUTION" --out "$OUT/images/$name.png"
+    rc=$?
+    [ $rc -eq 130 ] && { say "interrupted during render $name"; exit 130; }
+    [ $rc -eq 0 ] || failed+=("render $name (exit $rc)")
+  done
+  # The float images (.pfm, 0.75 MB each at 256x256) are not shown; `oitbench render` writes them again.
+  rm -f "$OUT"/images/*.pfm
+fi
+
+write_report
+finish
