@@ -29,6 +29,7 @@ import oitcsv  # noqa: E402
 PLOTTERS = {}
 MAX_FACETS = 6
 MAX_NOTE_LINES = 6
+MAX_LEGEND_INSIDE = 8  # more entries than this go beside the axes, where they cover no curve
 
 
 def plotter(experiment):
@@ -131,7 +132,8 @@ def spread_is_wide(values):
 def draw_lines(ax, rows, x, label_columns, per=1.0, per_column=None):
     """One line per group of `label_columns`, y = median_ms / per (or / row[per_column]), MAD bars."""
     xs_all, ys_all = [], []
-    for key, grp in group_rows(rows, label_columns).items():
+    n_colors = len(plt.rcParams["axes.prop_cycle"].by_key()["color"])
+    for i, (key, grp) in enumerate(group_rows(rows, label_columns).items()):
         pts = []
         for r in grp:
             xv, y, mad = oitcsv.to_float(r.get(x)), value(r), value(r, "mad_ms") or 0.0
@@ -142,7 +144,9 @@ def draw_lines(ax, rows, x, label_columns, per=1.0, per_column=None):
         if not pts:
             continue
         xs, ys, es = zip(*pts)
+        # Past the colour cycle the line style changes, so two curves never look the same.
         ax.errorbar(xs, ys, yerr=es, marker="o", markersize=4, capsize=3, linewidth=1.5,
+                    linestyle=("-", "--", ":", "-.")[(i // n_colors) % 4],
                     label=group_label(grp[0], label_columns) or "all")
         xs_all += xs
         ys_all += ys
@@ -173,7 +177,7 @@ def curves(data, x_candidates=(), facet_candidates=(), ylabel="median time (ms)"
         if facet:
             ax.set_title(f"{facet} = {fkey[0]}", fontsize=10)
     axes[0][0].set_ylabel(ylabel)
-    axes[0][-1].legend(fontsize=8, loc="best")
+    legend(axes[0][-1])
     fig.suptitle(title_of(data, what), fontsize=10)
     return fig
 
@@ -207,9 +211,17 @@ def bars(data, category_candidates=(), what=None, ylabel="median time (ms)"):
     ax.set_ylabel(ylabel)
     ax.grid(True, axis="y", alpha=0.3)
     if others:
-        ax.legend(fontsize=8)
+        legend(ax)
     fig.suptitle(title_of(data, what), fontsize=10)
     return fig
+
+
+def legend(ax):
+    """Inside the axes where it fits; a long one to the right of them (savefig's tight box keeps it)."""
+    if len(ax.get_legend_handles_labels()[1]) > MAX_LEGEND_INSIDE:
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, handlelength=3.5)
+    else:
+        ax.legend(fontsize=8, loc="best")
 
 
 def generic_plot(data):
@@ -478,8 +490,14 @@ def add_invalid_note(fig, lines):
     if len(lines) > MAX_NOTE_LINES:
         shown.append(f"... and {len(lines) - MAX_NOTE_LINES} more (see stdout)")
     text = "not plotted (invalid or failed):\n" + "\n".join(s if len(s) < 140 else s[:137] + "..." for s in shown)
+    # The note gets room of its own below the axes: the figure grows by it, the axes keep their size.
+    width, height = fig.get_size_inches()
+    extra = 0.25 + 0.12 * (len(shown) + 1)
+    sub = fig.subplotpars
+    fig.set_size_inches(width, height + extra)
+    fig.subplots_adjust(bottom=(sub.bottom * height + extra) / (height + extra),
+                        top=(sub.top * height + extra) / (height + extra))
     fig.text(0.01, 0.01, text, fontsize=7, color="firebrick", va="bottom", family="monospace")
-    fig.subplots_adjust(bottom=0.2 + 0.025 * len(shown))
 
 
 def plot_experiment(data):
