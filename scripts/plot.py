@@ -169,7 +169,11 @@ def curves(data, x_candidates=(), facet_candidates=(), ylabel="median time (ms)"
     for ax, (fkey, frows) in zip(axes[0], facets.items()):
         xs, ys = draw_lines(ax, frows, x, label_columns)
         if xs and min(xs) > 0 and max(xs) / min(xs) >= 8:
-            log2_ticks(ax, xs)
+            # Sizes and counts (n, SIZE, nodes) read best on powers of two; millions of segments do not.
+            if max(xs) <= 4096:
+                log2_ticks(ax, xs)
+            else:
+                ax.set_xscale("log")
         if logy or (logy is None and spread_is_wide(ys)):
             ax.set_yscale("log")
         ax.set_xlabel(x)
@@ -179,6 +183,8 @@ def curves(data, x_candidates=(), facet_candidates=(), ylabel="median time (ms)"
     axes[0][0].set_ylabel(ylabel)
     legend(axes[0][-1])
     fig.suptitle(title_of(data, what), fontsize=10)
+    if facet:
+        fig.subplots_adjust(top=0.82)  # the two-line title above the panels' own titles
     return fig
 
 
@@ -205,8 +211,9 @@ def bars(data, category_candidates=(), what=None, ylabel="median time (ms)"):
         ax.bar(xs, ys, width=width, yerr=es, capsize=3,
                label=group_label(srows[0], others) if others else None)
     ax.set_xticks(range(len(categories)))
-    ax.set_xticklabels([c[0] for c in categories], rotation=20 if len(categories) > 4 else 0, ha="right"
-                       if len(categories) > 4 else "center")
+    # Slanted when the names would run into each other.
+    slant = len(categories) > 4 or sum(len(str(c[0])) for c in categories) > 40
+    ax.set_xticklabels([c[0] for c in categories], rotation=20 if slant else 0, ha="right" if slant else "center")
     ax.set_xlabel(category)
     ax.set_ylabel(ylabel)
     ax.grid(True, axis="y", alpha=0.3)
