@@ -16,7 +16,6 @@ unreadable input, or an output folder that holds something else.
 import argparse
 import collections
 import html
-import json
 import os
 import re
 import shutil
@@ -108,13 +107,11 @@ def collect(paths, out_dir, images_dir):
         if os.path.realpath(p) in seen:
             continue
         seen.add(os.path.realpath(p))
-        raw_params = None
-        sibling = p[:-len(".csv")] + "_raw.csv"
-        if sibling in headers and oitcsv.is_raw_header(headers[sibling][0]):
-            raw_params = oitcsv.raw_param_columns(headers[sibling][0])
-        elif os.path.isfile(sibling):
-            raw_header, _ = oitcsv.read_csv(sibling)
-            raw_params = oitcsv.raw_param_columns(raw_header) if oitcsv.is_raw_header(raw_header) else None
+        # NAME_raw.csv beside NAME.csv, when it is a raw file, makes NAME's parameter columns exact.
+        sibling = p[:-len(".csv")] + "_raw.csv" if p.endswith(".csv") else None
+        raw_header = headers[sibling][0] if sibling in headers else (
+            oitcsv.read_csv(sibling)[0] if sibling and os.path.isfile(sibling) else [])
+        raw_params = oitcsv.raw_param_columns(raw_header) if oitcsv.is_raw_header(raw_header) else None
         label = rel[:-len(".csv")] if rel.endswith(".csv") else rel
         inputs.append(Input(oitcsv.Run(p, header, rows, raw_params, label), rel))
     if not inputs:
