@@ -389,6 +389,7 @@ figcaption { font-size: 13px; color: var(--muted); margin-top: 4px; }
                border: 1px solid var(--line); border-radius: 4px; background: #000; }
 details.table-run { margin: 6px 0 14px; }
 details.table-run > summary { cursor: pointer; font-weight: 600; }
+details.table-run details > summary { cursor: pointer; color: var(--muted); font-size: 13px; }
 dl.howto dt { font-weight: 600; margin-top: 8px; }
 dl.howto dd { margin-left: 16px; }
 """
@@ -418,7 +419,7 @@ def howto_section(page, have_tables, have_images):
                       "rows for, the paper's numbers and ours side by side. Hardware differs by orders of "
                       "magnitude, so compare the <em>speedup</em> columns (time of the table's baseline / "
                       "time, computed alike for paper and ours), not milliseconds. Each run is matched on its "
-                      "own; greyed rows have no matching row in that run."))
+                      "own; the paper's rows that run has nothing for are folded away below its table."))
     if have_images:
         items.append(("Rendered images", "<code>oitbench render</code> output: the image, its difference "
                       "to the exact CPU reference amplified 8 times (black is exact) and the depth "
@@ -549,11 +550,15 @@ def tables_section(page, inputs, paper_dir, shown_paper_dir):
             is_open = matched == best and not opened
             opened = opened or is_open
             notes = "".join(f"<p class='muted'>{md_inline(n)}</p>" for n in layout.notes)
-            classes = ["" if ok else "unmatched" for ok in layout.ours_found]
-            cells = [[esc(c) for c in row] for row in layout.cells]
+            # The rows with ours first; the paper's other rows stay one click away, in the paper's order.
+            mine = [[esc(c) for c in row] for row, ok in zip(layout.cells, layout.ours_found) if ok]
+            rest = [[esc(c) for c in row] for row, ok in zip(layout.cells, layout.ours_found) if not ok]
+            others = (f"<details><summary>the paper's {len(rest)} other row(s), with none of ours</summary>"
+                      f"{html_table(layout.header, rest, layout.numeric, ['unmatched'] * len(rest))}</details>"
+                      if rest else "")
             page.add(f'<details class="table-run"{" open" if is_open else ""}><summary>ours from '
                      f"<code>{esc(inp.rel)}</code>: {matched} of {len(layout.cells)} rows matched</summary>"
-                     f"{notes}{html_table(layout.header, cells, layout.numeric, classes)}</details>")
+                     f"{notes}{html_table(layout.header, mine, layout.numeric)}{others}</details>")
     if not count:
         page.add("<p class='muted'>No run has rows that a paper table compares with.</p>")
     return count
