@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "core/csv.hpp"
@@ -222,8 +223,13 @@ int run_cli(int argc, char** argv) {
       ropt.out = stem + ".csv";
       ropt.progress = false;
       int rc = run_experiments(registry, {req}, ropt);
-      std::fprintf(stderr, "oitbench: wrote %s.png, %s.pfm, %s-diff8.png, %s-depth.png, %s-depth-histogram.csv, %s.csv\n",
-                   stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str(), stem.c_str());
+      // Name only what is there: a case that failed wrote no image, an approximate one no depth view.
+      std::string wrote;
+      for (const char* suffix : {".png", ".pfm", "-diff8.png", "-depth.png", "-depth-histogram.csv", ".csv"})
+        if (std::filesystem::exists(stem + suffix)) wrote += (wrote.empty() ? "" : ", ") + stem + suffix;
+      if (!std::filesystem::exists(stem + ".png"))
+        std::fprintf(stderr, "oitbench: no image written: the case did not finish (see its row in %s.csv)\n", stem.c_str());
+      if (!wrote.empty()) std::fprintf(stderr, "oitbench: wrote %s\n", wrote.c_str());
       return rc;
     }
 

@@ -504,8 +504,10 @@ class Runner {
     heartbeat();
     if (!opt_.progress) return;
     double elapsed = ms_since(start_) / 1000.0;
-    bool in_group = step < steps && !group.empty();
-    double done = static_cast<double>(cases_done_) + (in_group ? static_cast<double>(group.size()) * step / steps : 0.0);
+    // The group's cases are not counted in cases_done_ until it ends, its last repetition included.
+    const bool in_group = !group.empty();
+    double done = static_cast<double>(cases_done_) +
+                  (in_group ? static_cast<double>(group.size()) * std::min(step, steps) / std::max(steps, 1) : 0.0);
     double frac = done / static_cast<double>(std::max<size_t>(total_cases_, 1));
     char eta[32] = "?";
     if (frac > 0.005) std::snprintf(eta, sizeof eta, "%.0f s", elapsed / frac - elapsed);
@@ -514,7 +516,7 @@ class Runner {
       std::snprintf(cases, sizeof cases, "cases %zu-%zu of %zu", cases_done_ + 1, cases_done_ + group.size(), total_cases_);
     else
       std::snprintf(cases, sizeof cases, "case %zu of %zu", std::min(cases_done_ + (in_group ? 1 : 0), total_cases_),
-                    total_cases_);
+                    total_cases_);  // between groups: the last finished one
     std::fprintf(stderr, "\r[%s] %s  rep %d/%d  elapsed %.1f s  remaining ~%s   ", cases, exp.name().c_str(), step,
                  steps, elapsed, eta);
     if (!isatty(STDERR_FILENO)) std::fputc('\n', stderr);
