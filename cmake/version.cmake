@@ -1,11 +1,14 @@
-# Writes the git sha of the source tree (with -dirty when it has uncommitted changes) into a .cpp,
-# touching it only when the value changes so unchanged builds stay incremental.
+# Writes the git sha of the source tree into a .cpp, with -dirty when what the binary is built from
+# or reads at run time (micro/, shaders/, scenes/, presets/, the build files) differs from that commit,
+# untracked files there included; results, scripts, tests and docs do not make a run's numbers dirty.
+# Touches the .cpp only when the value changes so unchanged builds stay incremental.
 execute_process(COMMAND git -C ${SRC} rev-parse --short=12 HEAD OUTPUT_VARIABLE sha
                 OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0 OR sha STREQUAL "")
   set(sha "unknown")
 else()
-  execute_process(COMMAND git -C ${SRC} status --porcelain --untracked-files=no
+  execute_process(COMMAND git -C ${SRC} status --porcelain --untracked-files=normal --
+                          micro shaders scenes presets cmake CMakeLists.txt
                   OUTPUT_VARIABLE dirty OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
   if(NOT dirty STREQUAL "")
     set(sha "${sha}-dirty")

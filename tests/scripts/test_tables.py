@@ -158,13 +158,13 @@ class TablesFromReferenceRuns(unittest.TestCase):
         self.results = os.path.join(repo, "results", "llvmpipe")
 
     def test_bruell_approx_tables_set_ours_beside_the_thesis(self):
-        out = run_script("tables.py", os.path.join(self.results, "approx_table5_6_192.csv"), "--paper", self.paper,
+        out = run_script("tables.py", os.path.join(self.results, "presets", "bruell2018-approx.csv"), "--paper", self.paper,
                          "--table", "bruell-5.1").stdout
         self.assertIn("| powerplant | 4 | MLAB | 15.22 ms | 1x |", out)
         self.assertRegex(out, r"\| powerplant \| 4 \| UMLAB \| 14.75 ms \| 1.03x \| [0-9.]+ \| [0-9.]+x \|")
 
     def test_sintorn_poster_beside_the_lines_experiment(self):
-        out = run_script("tables.py", os.path.join(self.results, "lines_512.csv"), "--paper", self.paper,
+        out = run_script("tables.py", os.path.join(self.results, "presets", "sintorn-lines.csv"), "--paper", self.paper,
                          "--table", "sintorn").stdout
         self.assertRegex(out, r"\| dog \| 1800000 \| 25 \| [0-9.]+ \| [0-9.]+ \|")
         self.assertIn("| woman2 | 320000 | 50 | — | — |", out)
