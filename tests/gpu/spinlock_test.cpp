@@ -52,9 +52,12 @@ TEST_F(Spinlock, ALockNeverReleasedIsCappedNotHung) {
 
 TEST_F(Spinlock, AHungCaseBecomesATimeoutRowAndTheRunGoesOn) {
   auto out = temp_dir("spinlock_hang") / "rows.csv";
-  auto r = run_oitbench({"run", "spinlock", "--quick", "--reps", "1", "--set", "variant=loop,naive", "--set",
-                         "fault=hang", "--timeout", "2", "--out", out.string()},
-                        60);
+  // llvmpipe ends any shader loop after 65535 iterations (gallivm's loop budget), so its "hang" is a
+  // long finite loop per fragment: at 256x256 a hung case runs ~12 s on a quiet 2-core VM, 6x the 2 s watchdog
+  // (at the quick 64x64 it finished in 1.6 s on a quiet machine and the case was not killed).
+  auto r = run_oitbench({"run", "spinlock", "--quick", "--reps", "1", "--resolution", "256x256", "--set",
+                         "variant=loop,naive", "--set", "fault=hang", "--timeout", "2", "--out", out.string()},
+                        120);
   EXPECT_EQ(r.exit_code, 1) << r.err;  // timeouts are failures of the run
   auto rows = read_csv_rows(out);
   ASSERT_EQ(rows.size(), 2u) << r.err;  // the second case ran after the first was killed
