@@ -178,9 +178,11 @@ TEST(Cli, CtrlCLeavesAParseableCsvWithTheFinishedRows) {
 
 TEST(Cli, TheWatchdogEndsAHungCaseAndTheRunGoesOn) {
   auto out = temp_dir("hang") / "h.csv";
-  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "variant=dynamic", "--set", "size=1", "--set",
-                         "fault=hang,none", "--isolate", "always", "--timeout", "4", "--out", out.string(),
-                         "--no-progress"},
+  // On llvmpipe a "hang" is finite (every shader loop ends after 65535 iterations): at 400x300 the hung
+  // case would run ~35 s on a quiet 2-core VM, well past the 4 s watchdog (at the quick 200x150, 9 s).
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--resolution", "400x300", "--set", "variant=dynamic", "--set",
+                         "size=1", "--set", "fault=hang,none", "--isolate", "always", "--timeout", "4", "--out",
+                         out.string(), "--no-progress"},
                         120);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   auto rows = read_csv_rows(out);
