@@ -52,10 +52,14 @@ def alternative_words(text):
 class Technique:
     """How one paper technique string is found among our rows."""
 
-    def __init__(self, experiment, alternatives, exclude=()):
+    def __init__(self, experiment, alternatives, exclude=(), size_column=None):
         self.experiment = experiment
         self.alternatives = [alternative_words(a) for a in alternatives]
         self.exclude = set().union(*(alternative_words(e) for e in exclude)) if exclude else set()
+        # The parameter the paper's size means for this technique (the oit experiment has both
+        # max_frags, for exact resolves, and nodes, for the approximate ones); None: the first of
+        # SIZE_COLUMNS a row has.
+        self.size_column = size_column
 
     def matches(self, row_words):
         if row_words & self.exclude:
@@ -63,8 +67,8 @@ class Technique:
         return any(a <= row_words for a in self.alternatives)
 
 
-def T(experiment, *alternatives, exclude=()):
-    return Technique(experiment, alternatives, exclude)
+def T(experiment, *alternatives, exclude=(), size=None):
+    return Technique(experiment, alternatives, exclude, size)
 
 
 # Paper technique -> our experiment and the words that identify it. Knowles: IS insertion sort, IMS
@@ -75,7 +79,7 @@ _NOT_IS = ("ims", "merge", "rbs", "rbsl", "rbsg", "register")
 
 def _alloc_sort(alloc, sort_words, exclude=()):
     alts = [f"{alloc} {s}" for s in sort_words] + [f"{alloc}{s}" for s in sort_words if " " not in s]
-    return T("oit", *alts, exclude=exclude)
+    return T("oit", *alts, exclude=exclude, size="max_frags")
 
 
 TECHNIQUES = {
@@ -84,17 +88,19 @@ TECHNIQUES = {
     "naive insertion, dynamic index assignment: loop": T("sort", "loop", exclude=("unrolled",)),
     "naive insertion, dynamic index assignment: switch": T("sort", "switch"),
     "naive insertion, dynamic index assignment: if-else": T("sort", "ifelse", "if else", "branch"),
-    "bubble sort, no early out": T("sort", "bubble noearlyout", "bubble no early", "bubble earlyout=0",
-                                   "bubble early_out=0"),
-    "bubble sort, early out": T("sort", "bubble earlyout", "bubble early out", "bubble earlyout=1",
-                                "bubble early_out=1", exclude=("no", "noearlyout", "earlyout=0")),
+    # Our variants: bubble (Listing 4.10 without its early out) and bubble-early (with it).
+    "bubble sort, no early out": T("sort", "bubble", exclude=("early", "earlyout", "earlyout=1")),
+    "bubble sort, early out": T("sort", "bubble early", "bubble earlyout", exclude=("no", "noearlyout", "earlyout=0")),
     # A.2: insertion into a per-pixel array with and without early out: the insert experiment.
-    "MLAB insertion x128, no early out": T("insert", "noearlyout", "no early out", "earlyout=0", "early_out=0"),
+    # A.2 inserts the Village's fragments: our random keys, not the back/front worst and best cases.
+    "MLAB insertion x128, no early out": T("insert", "noearlyout", "no early out", "earlyout=0", "early_out=0",
+                                           exclude=("keys=back", "keys=front")),
     "MLAB insertion x128, early out": T("insert", "earlyout", "early out", "earlyout=1", "early_out=1",
-                                        exclude=("no", "noearlyout", "earlyout=0")),
-    "MLAB insertion x16, no early out": T("insert", "noearlyout", "no early out", "earlyout=0", "early_out=0"),
+                                        exclude=("no", "noearlyout", "earlyout=0", "keys=back", "keys=front")),
+    "MLAB insertion x16, no early out": T("insert", "noearlyout", "no early out", "earlyout=0", "early_out=0",
+                                          exclude=("keys=back", "keys=front")),
     "MLAB insertion x16, early out": T("insert", "earlyout", "early out", "earlyout=1", "early_out=1",
-                                       exclude=("no", "noearlyout", "earlyout=0")),
+                                       exclude=("no", "noearlyout", "earlyout=0", "keys=back", "keys=front")),
     # A.4/A.5: the stencil experiment (UMLAB only where our rows say umlab).
     "MLAB no stencil": T("stencil", "nostencil", "no stencil", "stencil=0", "stencil=off", "none",
                          exclude=("umlab",)),
@@ -113,22 +119,22 @@ TECHNIQUES = {
     "BASE-IS": _alloc_sort("base", _IS, exclude=_NOT_IS + ("bma",)),
     "BASE-IMS": _alloc_sort("base", ("ims", "merge"), exclude=("bma", "rbs")),
     "BASE-RBS-L": _alloc_sort("base", ("rbs", "rbsl", "rbs l", "register"), exclude=("bma", "g", "global", "rbsg")),
-    "RBS-G": T("oit", "rbsg", "rbs g", "rbs global", exclude=("bma",)),
+    "RBS-G": T("oit", "rbsg", "rbs g", "rbs global", exclude=("bma",), size="max_frags"),
     "BMA-IS": _alloc_sort("bma", _IS, exclude=_NOT_IS),
     "BMA-IMS": _alloc_sort("bma", ("ims", "merge"), exclude=("rbs",)),
     "BMA-RBS-L": _alloc_sort("bma", ("rbs", "rbsl", "rbs l", "register"), exclude=("g", "global", "rbsg")),
     # CUDA-IS, CUDA-IMS, CUDA-RBS-L: our CS-* rows stand in for them.
-    "CUDA-IS": T("oit", "cs is", "csis"),
-    "CUDA-IMS": T("oit", "cs ims", "csims"),
-    "CUDA-RBS-L": T("oit", "cs rbs l", "csrbsl"),
+    "CUDA-IS": T("oit", "cs is", "csis", size="max_frags"),
+    "CUDA-IMS": T("oit", "cs ims", "csims", size="max_frags"),
+    "CUDA-RBS-L": T("oit", "cs rbs l", "csrbsl", size="max_frags"),
     # Brüll 2018 tables 5.1 and 6.1-6.3: approximate techniques of the oit experiment (size = nodes).
-    "MLAB": T("oit", "mlab"),
-    "UMLAB": T("oit", "umlab"),
-    "AT": T("oit", "at"),
-    "UAT": T("oit", "uat"),
-    "LAAT": T("oit", "laat"),
-    "HAT": T("oit", "hat"),
-    "UHAT": T("oit", "uhat"),
+    "MLAB": T("oit", "mlab", size="nodes"),
+    "UMLAB": T("oit", "umlab", size="nodes"),
+    "AT": T("oit", "at", size="nodes"),
+    "UAT": T("oit", "uat", size="nodes"),
+    "LAAT": T("oit", "laat", size="nodes"),
+    "HAT": T("oit", "hat", size="nodes"),
+    "UHAT": T("oit", "uhat", size="nodes"),
 }
 
 # Which of our passes a paper metric is.
@@ -266,7 +272,7 @@ class Ours:
         for _, r, ws, params in self.rows:
             if r["experiment"] != rule.experiment or r["pass"] not in passes or not rule.matches(ws):
                 continue
-            if size and not size_matches(r, params, size):
+            if size and not size_matches(r, params, size, rule.size_column):
                 continue
             scene_col = next((c for c in SCENE_COLUMNS if c in params and r.get(c)), None)
             if scene_col and scene not in GENERIC_SCENES and norm(r[scene_col]) != norm(scene):
@@ -281,22 +287,26 @@ class Ours:
         values = [v for p, v in hits if p == best_pass]
         return statistics.median(values), len(values)
 
-    def cases(self, experiment):
-        """Our (size, scene, resolution) groups for an experiment: where summary speedups are taken."""
+    def cases(self, experiment, size_column=None):
+        """Our (size, scene, view, resolution) groups for an experiment: where summary speedups are taken."""
         groups = {}
         for _, r, _, params in self.rows:
             if r["experiment"] != experiment or r["pass"] != "total":
                 continue
-            size_col = next((c for c in SIZE_COLUMNS if c in params and r.get(c)), None)
+            size_col = size_column if size_column in params else next(
+                (c for c in SIZE_COLUMNS if c in params and r.get(c)), None)
             scene_col = next((c for c in SCENE_COLUMNS if c in params and r.get(c)), None)
+            view_col = next((c for c in VIEW_COLUMNS if c in params and r.get(c)), None)
             key = (r.get(size_col, "") if size_col else "", r.get(scene_col, "") if scene_col else "",
-                   r["width"], r["height"])
+                   r.get(view_col, "") if view_col else "", r["width"], r["height"])
             groups.setdefault(key, None)
         return list(groups)
 
 
-def size_matches(row, params, size):
+def size_matches(row, params, size, column=None):
     want = oitcsv.to_float(size)
+    if column:
+        return column in params and oitcsv.to_float(row.get(column, "")) == want
     for c in SIZE_COLUMNS:
         if c in params and row.get(c, "") != "":
             return oitcsv.to_float(row[c]) == want
@@ -398,11 +408,12 @@ def summary_rows(table, rows, ours):
     for r in rows:
         tech = r["technique"]
         speedups = []
-        for size, scene, w, h in ours.cases(TECHNIQUES["BASE-IS"].experiment):
+        base_rule = TECHNIQUES["BASE-IS"]
+        for size, scene, view, w, h in ours.cases(base_rule.experiment, base_rule.size_column):
             if tech not in TECHNIQUES:
                 break
-            base, _ = ours.lookup("BASE-IS", size, scene or "all", metric_base(r["metric"]))
-            mine, _ = ours.lookup(tech, size, scene or "all", metric_base(r["metric"]))
+            base, _ = ours.lookup("BASE-IS", size, scene or "all", metric_base(r["metric"]), view)
+            mine, _ = ours.lookup(tech, size, scene or "all", metric_base(r["metric"]), view)
             if base and mine:
                 speedups.append(base / mine)
         if speedups:

@@ -92,6 +92,37 @@ class TablesMini(TempDirTest):
         got = {(r["technique"], r["metric"]): r for r in csv.DictReader(io.StringIO(proc.stdout))}
         self.assertAlmostEqual(float(got[("BASE-IS", "total_time")]["ours_ms"]), 255.0)
 
+    def test_the_size_is_max_frags_for_exact_resolves_even_beside_a_nodes_column(self):
+        # oit rows carry nodes (the approximate techniques' parameter, 8 by default) and max_frags: the
+        # Knowles tables' size is MAX_FRAGS, so neither a nodes=8 row nor the other MAX_FRAGS may count.
+        with open(self.path("paper/mini.csv"), "a", encoding="utf-8") as f:
+            f.write("knowles2013-bma,2,NVIDIA GTX 670,1680x1050,smoke,,OIT,256,total_time,ms,167.7\n"
+                    "knowles2013-bma,2,NVIDIA GTX 670,1680x1050,smoke,,BMA-OIT,256,total_time,ms,80.7\n")
+        rows = [{"experiment": "oit", "variant": v, "scene": "smoke", "view": "fwd", "max_frags": mf, "nodes": 8,
+                 "pass": "total", "median_ms": ms}
+                for v, mf, ms in (("base-is", 256, 80.0), ("base-is", 512, 90.0), ("bma-is", 256, 100.0),
+                                  ("bma-is", 512, 50.0))]
+        run = syn.write_summary(self.path("k13.csv"), rows, params=["scene", "view", "max_frags", "nodes"])
+        proc = run_script("tables.py", run, "--paper", self.path("paper"), "--table", "knowles2013-2",
+                          "--format", "csv")
+        got = {r["technique"]: r for r in csv.DictReader(io.StringIO(proc.stdout)) if r["scene"] == "smoke"}
+        self.assertAlmostEqual(float(got["OIT"]["ours_ms"]), 80.0)
+        self.assertAlmostEqual(float(got["BMA-OIT"]["ours_speedup"]), 0.8)
+
+    def test_bubble_variants_fill_table_a3(self):
+        with open(self.path("paper/mini.csv"), "a", encoding="utf-8") as f:
+            f.write('bruell2018-thesis,A.3,NVIDIA GTX 1080,800x800,sort-bench,,"bubble sort, no early out",'
+                    "32,total_time,ms,1.109\n"
+                    'bruell2018-thesis,A.3,NVIDIA GTX 1080,800x800,sort-bench,,"bubble sort, early out",'
+                    "32,total_time,ms,0.5507\n")
+        rows = [{"experiment": "sort", "variant": v, "n": 32, "keys": "random", "pass": "total", "median_ms": ms}
+                for v, ms in (("bubble", 200.0), ("bubble-early", 400.0))]
+        run = syn.write_summary(self.path("bubble.csv"), rows, params=["n", "keys"])
+        proc = run_script("tables.py", run, "--paper", self.path("paper"), "--table", "A.3", "--format", "csv")
+        got = {r["technique"]: r for r in csv.DictReader(io.StringIO(proc.stdout))}
+        self.assertAlmostEqual(float(got["bubble sort, no early out"]["ours_ms"]), 200.0)
+        self.assertAlmostEqual(float(got["bubble sort, early out"]["ours_speedup"]), 0.5)
+
     def test_stand_in_scenes_sit_beside_the_papers_models(self):
         # The power plant's V1 has MAX_FRAGS 512 in the paper; our engine grid's V1 has its own 256.
         with open(self.path("paper/mini.csv"), "a", encoding="utf-8") as f:
