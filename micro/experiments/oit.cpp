@@ -28,7 +28,8 @@ class OitExperiment final : public Experiment {
  public:
   std::string name() const override { return "oit"; }
   std::string description() const override {
-    return "exact OIT (Knowles 2013 BMA, 2014 RBS): per-pixel linked lists captured from a scene file, resolved by "
+    return "exact OIT (Knowles 2013 BMA, 2014 RBS): fragments captured from a scene file into per-pixel linked lists "
+           "(PPLL) or packed per-pixel arrays (PPPA), resolved by "
            "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
            "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, micro/oit/approx.cpp) "
            "is validated against each technique's own CPU model, its error vs the exact image reported as data";

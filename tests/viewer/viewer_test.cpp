@@ -78,10 +78,22 @@ TEST(Viewer, DepthComplexityShowsThePeakInRed) {
   EXPECT_TRUE(contains(r.err, "depth complexity on")) << r.err;
 }
 
+TEST(Viewer, CWalksThePackedArraysCaptureAndItsDepthComplexity) {
+  // C: PPLL -> PPPA; the case is rebuilt on packed arrays and Z counts them through the storage API.
+  auto png = temp_dir("viewer-pppa") / "pppa.png";
+  auto r =
+      run_oitbench(with(kSmallPlanes, {"--frames", "5", "--screenshot", png.string(), "--keys", "1:C,3:Z"}), 120);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "capture storage PPPA")) << r.err;
+  auto img = read_png(png);
+  ASSERT_TRUE(img);
+  EXPECT_EQ(img->at(80, 90), glm::ivec3(255, 0, 0));  // 24 planes at the centre: the peak, red
+}
+
 TEST(Viewer, KeysSwitchTechniqueBmaMaxFragsAndApproximate) {
   auto png = temp_dir("viewer-keys") / "keys.png";
   // BASE-IS -B-> BMA-IS -M-> MAX_FRAGS 64 -B-> BASE-IS -shift+T-> unsorted (approximate, the last
-  // technique), where Z, C and M have nothing to work on and say so.
+  // technique), where Z and M have nothing to work on and say so (C switches its reference's capture).
   auto r = run_oitbench(with(kSmallPlanes, {"--frames", "10", "--screenshot", png.string(), "--keys",
                                             "1:B,2:M,3:B,4:shift+T,5:Z,6:C,7:shift+M"}),
                         240);
