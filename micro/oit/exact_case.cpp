@@ -16,6 +16,7 @@
 #include <string>
 
 #include "core/render_target.hpp"
+#include "core/stats.hpp"
 #include "oit/approx.hpp"
 #include "oit/bma_auto.hpp"
 #include "oit/compute_resolve.hpp"
@@ -39,11 +40,6 @@ unsigned next_pow2(unsigned v) {
   unsigned p = 1;
   while (p < v) p <<= 1;
   return p;
-}
-
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
 }
 
 std::string fmt(double v) {
@@ -234,7 +230,7 @@ class ExactCase final : public OitCase {
     m["max_frags"] = std::to_string(max_frags_);
     m["node_pool"] = std::to_string(lists_->pool());
     m["node_pool_bytes"] = std::to_string(lists_->bytes());
-    if (!count_ms_.empty()) m["capture_count_ms"] = fmt(median(count_ms_));
+    if (!count_ms_.empty()) m["capture_count_ms"] = fmt(median_of(count_ms_));
     if (auto_) {
       m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
       m["bma_auto_source"] = auto_choice_.source;
@@ -244,7 +240,7 @@ class ExactCase final : public OitCase {
     size_t truncated = 0;
     for (unsigned d : stats.depth) truncated += d > max_frags_;
     m["truncated_pixels"] = std::to_string(truncated);
-    if (!capture_ms_.empty()) m["fragments_per_s"] = fmt(stats.total_fragments / (median(capture_ms_) / 1000.0));
+    if (!capture_ms_.empty()) m["fragments_per_s"] = fmt(stats.total_fragments / (median_of(capture_ms_) / 1000.0));
     if (bma_) {
       std::string s;
       for (size_t i = 0; i < interval_tops_.size(); ++i)
