@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 
 namespace oitbench {
 

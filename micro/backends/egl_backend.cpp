@@ -7,7 +7,7 @@
 #include <string>
 
 #include "backends/backend.hpp"
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 
 namespace oitbench {
 namespace {

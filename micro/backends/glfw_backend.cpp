@@ -1,6 +1,6 @@
 // GLFW: a real window (interactive use, and tests under xvfb-run). Experiments still render into
 // FBOs; the window is for presenting and for drivers that only give contexts with a window.
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 

@@ -1,6 +1,6 @@
 // OSMesa: Mesa's off-screen software context (core profile 4.5 on Mesa 22; removed in Mesa 25.1,
 // so this file is built only when CMake finds it).
-#include "core/gl.hpp"  // glad before OSMesa's header
+#include "gl/gl.hpp"  // glad before OSMesa's header
 #include <GL/osmesa.h>
 
 #include <vector>

@@ -1,4 +1,5 @@
 #include "core/text_position.hpp"
+#include "core/data_dirs.hpp"
 #include "core/presets.hpp"
 
 #include <filesystem>
@@ -34,15 +35,7 @@ Resolution parse_resolution(const std::string& text) {
   return r;
 }
 
-std::string default_preset_dir() {
-  if (const char* env = std::getenv("OITBENCH_PRESETS")) return env;
-  std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec)
-    for (auto dir = exe.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
-      if (std::filesystem::is_directory(dir / "presets")) return (dir / "presets").string();
-  return std::string(OITBENCH_SOURCE_DIR) + "/presets";
-}
+std::string default_preset_dir() { return data_dir("presets"); }
 
 Preset parse_preset(const std::string& name, const std::string& path, const std::string& text) {
   nlohmann::json j;

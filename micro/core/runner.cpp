@@ -20,6 +20,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/data_dirs.hpp"
 #include "core/csv.hpp"
 #include "core/stats.hpp"
 
@@ -617,14 +618,6 @@ int run_experiments(Registry& registry, const std::vector<RunRequest>& requests,
   return runner.run(requests);
 }
 
-std::string default_shader_root() {
-  if (const char* env = std::getenv("OITBENCH_SHADERS")) return env;
-  std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec)
-    for (auto dir = exe.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
-      if (std::filesystem::exists(dir / "shaders" / "common")) return (dir / "shaders").string();
-  return std::string(OITBENCH_SOURCE_DIR) + "/shaders";
-}
+std::string default_shader_root() { return data_dir("shaders"); }
 
 }  // namespace oitbench

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/gl_objects.hpp"
+#include "gl/gl_objects.hpp"
 
 namespace oitbench {
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/packed_fragment.hpp"
+#include "oit/packed_fragment.hpp"
 #include "core/registry.hpp"
-#include "core/render_target.hpp"
+#include "gl/render_target.hpp"
 
 namespace oitbench {
 

@@ -16,7 +16,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/registry.hpp"
-#include "core/render_target.hpp"
+#include "gl/render_target.hpp"
 #include "oit/approx.hpp"
 #include "oit/fragment_lists.hpp"
 #include "oit/reference.hpp"

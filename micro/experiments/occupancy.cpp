@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/registry.hpp"
-#include "core/render_target.hpp"
+#include "gl/render_target.hpp"
 #include "models/occupancy_model.hpp"
 
 namespace oitbench {

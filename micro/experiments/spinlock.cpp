@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "../../shaders/spinlock/bindings.h"
+#include "shaders/spinlock/bindings.h"
 #include "core/registry.hpp"
 #include "oit/storage_layout.hpp"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
-#include "core/render_target.hpp"
+#include "gl/render_target.hpp"
 #include "oit/storage_layout.hpp"
 
 namespace oitbench {

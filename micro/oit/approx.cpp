@@ -20,8 +20,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "../../shaders/approx/bindings.h"
-#include "core/render_target.hpp"
+#include "shaders/approx/bindings.h"
+#include "gl/render_target.hpp"
 #include "oit/gpu_mesh.hpp"
 #include "oit/reference.hpp"
 #include "oit/scene.hpp"

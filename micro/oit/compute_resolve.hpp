@@ -8,7 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "core/registry.hpp"
-#include "core/render_target.hpp"
+#include "gl/render_target.hpp"
 #include "oit/fragment_storage.hpp"
 
 namespace oitbench::oit {

@@ -15,7 +15,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/render_target.hpp"
+#include "gl/render_target.hpp"
 #include "core/stats.hpp"
 #include "oit/approx.hpp"
 #include "oit/bma_auto.hpp"

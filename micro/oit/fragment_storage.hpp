@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/gl_objects.hpp"
+#include "gl/gl_objects.hpp"
 #include "core/registry.hpp"
-#include "core/shader.hpp"
+#include "gl/shader.hpp"
 
 namespace oitbench::oit {
 

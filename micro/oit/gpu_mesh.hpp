@@ -1,7 +1,7 @@
 #pragma once
 // A scene mesh on the GPU: one interleaved vertex buffer (oit::Vertex), an index buffer in
 // submission order, and the vertex array that describes them for shaders/oit/capture.vert.
-#include "core/gl_objects.hpp"
+#include "gl/gl_objects.hpp"
 #include "oit/scene.hpp"
 
 namespace oitbench::oit {

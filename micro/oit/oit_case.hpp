@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 #include "core/registry.hpp"
 
 namespace oitbench::oit {

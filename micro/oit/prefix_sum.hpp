@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/gl_objects.hpp"
+#include "gl/gl_objects.hpp"
 #include "core/registry.hpp"
 
 namespace oitbench::oit {

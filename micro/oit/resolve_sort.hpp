@@ -3,7 +3,7 @@
 // suffix (BASE-IS, CS-RBS-L, RBS-G, ...), and the defines that select and size it.
 #include <string>
 
-#include "core/shader.hpp"
+#include "gl/shader.hpp"
 
 namespace oitbench::oit {
 

@@ -10,6 +10,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "core/data_dirs.hpp"
 #include "core/text_position.hpp"
 
 namespace oitbench::oit {
@@ -474,15 +475,7 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
   return s;
 }
 
-std::string default_scene_dir() {
-  if (const char* env = std::getenv("OITBENCH_SCENES")) return env;
-  std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec)
-    for (auto dir = exe.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
-      if (std::filesystem::is_directory(dir / "scenes")) return (dir / "scenes").string();
-  return std::string(OITBENCH_SOURCE_DIR) + "/scenes";
-}
+std::string default_scene_dir() { return data_dir("scenes"); }
 
 SceneDesc load_scene(const std::string& name_or_path) {
   std::filesystem::path path = name_or_path;

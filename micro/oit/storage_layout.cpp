@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "../../shaders/storage/bindings.h"
+#include "shaders/storage/bindings.h"
 #include "core/registry.hpp"
 
 namespace oitbench {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/gl_objects.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_objects.hpp"
+#include "gl/shader.hpp"
 
 namespace oitbench {
 

@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 #include "oit/fragment_storage.hpp"
 
 namespace oitbench::viewer {

@@ -3,9 +3,9 @@
 // walking its storage through the FRAG_* API (shaders/oit/storage/), shown blue (1 fragment) ->
 // green -> red (the peak) on a log scale, black where nothing landed. The same pass gives the
 // overlay's fragment total and peak depth.
-#include "core/gl_objects.hpp"
-#include "core/render_target.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_objects.hpp"
+#include "gl/render_target.hpp"
+#include "gl/shader.hpp"
 
 namespace oitbench::oit {
 class FragmentStorage;

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 #include "oit/approx.hpp"
 
 namespace oitbench::viewer {

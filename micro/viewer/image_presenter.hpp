@@ -4,9 +4,9 @@
 #include <glm/glm.hpp>
 #include <string>
 
-#include "core/gl_objects.hpp"
-#include "core/render_target.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_objects.hpp"
+#include "gl/render_target.hpp"
+#include "gl/shader.hpp"
 
 namespace oitbench::viewer {
 

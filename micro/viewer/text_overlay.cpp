@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"

@@ -1,6 +1,6 @@
 #include "viewer/viewer.hpp"
 
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 #ifdef OITBENCH_HAVE_GLFW
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "core/gl_objects.hpp"
+#include "gl/gl_objects.hpp"
 #include "oit/prefix_sum.hpp"
 #include "support/test_support.hpp"
 

@@ -1,6 +1,6 @@
 // The program-binary cache: a second build of the same sources and defines loads the linked
 // image instead of compiling, and the loaded program computes the same result.
-#include "core/shader.hpp"
+#include "gl/shader.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {

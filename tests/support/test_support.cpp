@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "experiments/experiments.hpp"
 #include "core/csv.hpp"
 #include "core/runner.hpp"
 

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "experiments/experiments.hpp"
 #include "core/params.hpp"
 #include "core/presets.hpp"
 #include "core/runner.hpp"

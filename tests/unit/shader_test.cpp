@@ -3,7 +3,7 @@
 
 #include <fstream>
 
-#include "core/shader.hpp"
+#include "gl/shader.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "experiments/experiments.hpp"
 #include "core/params.hpp"
 #include "support/test_support.hpp"
 #include "viewer/fly_camera.hpp"

@@ -1,4 +1,4 @@
-#include "core/shader.hpp"
+#include "gl/shader.hpp"
 
 #include <unistd.h>
 

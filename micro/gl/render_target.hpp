@@ -3,7 +3,7 @@
 // optionally depth-stencil), a full-screen triangle, and read-back.
 #include <vector>
 
-#include "core/gl_objects.hpp"
+#include "gl/gl_objects.hpp"
 
 namespace oitbench {
 

@@ -1,4 +1,4 @@
-#include "core/render_target.hpp"
+#include "gl/render_target.hpp"
 
 #include <stdexcept>
 #include <string>

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/gl_objects.hpp"
+#include "gl/gl_objects.hpp"
 
 namespace oitbench {
 

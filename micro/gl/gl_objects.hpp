@@ -3,7 +3,7 @@
 // the suite creates is released when its owner goes out of scope.
 #include <utility>
 
-#include "core/gl.hpp"
+#include "gl/gl.hpp"
 
 namespace oitbench::gl {
 

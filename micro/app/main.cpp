@@ -1,3 +1,3 @@
-#include "core/cli.hpp"
+#include "app/cli.hpp"
 
 int main(int argc, char** argv) { return oitbench::run_cli(argc, argv); }

@@ -1,10 +1,11 @@
-#include "core/cli.hpp"
+#include "app/cli.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
+#include "experiments/experiments.hpp"
 #include "core/csv.hpp"
 #include "core/presets.hpp"
 #include "core/runner.hpp"
