@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "experiments/experiments.hpp"
+#include "app/commands.hpp"
 #include "core/csv.hpp"
 #include "core/presets.hpp"
 #include "core/runner.hpp"
@@ -13,89 +14,24 @@
 
 namespace oitbench {
 
+using namespace app;
+
 namespace {
 
 constexpr const char* kExitCodes =
     "Exit codes: 0 done (rows may still be invalid: see the status column), 1 errors or timeouts,\n"
     "2 usage error, 3 nothing could run on this driver (all unsupported), 130 interrupted.";
 
-void print_list(const Registry& registry, bool presets, const std::string& preset_dir) {
-  if (presets) {
-    std::printf("Presets in %s (run with: oitbench run --preset NAME):\n", preset_dir.c_str());
-    for (const auto& p : list_presets(preset_dir)) {
-      std::printf("  %-18s %s\n", p.name.c_str(), p.description.c_str());
-      for (const auto& r : p.runs) {
-        std::printf("      %s", r.experiment.c_str());
-        for (const auto& [k, v] : r.overrides) std::printf(" %s=%zu value(s)", k.c_str(), v.size());
-        std::printf("\n");
-      }
-    }
-    return;
-  }
-  std::printf("Experiments (run with: oitbench run NAME [--set PARAM=V1,V2,...]):\n\n");
-  for (const auto& e : registry.all()) {
-    auto dr = e->default_resolution();
-    auto qr = e->quick_resolution();
-    std::printf("%s\n  %s\n  resolution %dx%d (--quick %dx%d)%s\n", e->name().c_str(), e->description().c_str(),
-                dr.width, dr.height, qr.width, qr.height, e->hang_prone() ? ", hang-prone: cases run isolated" : "");
-    for (const auto& p : registry.params_of(*e)) {
-      auto join = [](const std::vector<std::string>& v) {
-        std::string s;
-        for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
-        return s;
-      };
-      std::printf("    %-10s %s\n               default: %s%s\n               allowed: %s\n", p.name.c_str(),
-                  p.description.c_str(), join(p.defaults).c_str(),
-                  p.quick.empty() ? "" : ("  (--quick: " + join(p.quick) + ")").c_str(), p.allowed_text().c_str());
-    }
-    std::printf("\n");
-  }
-}
-
-int print_info(const ContextOptions& copt) {
-  std::printf("backends in this build: ");
-  for (const auto& b : compiled_backends()) std::printf("%s ", b.c_str());
-#ifndef OITBENCH_HAVE_OSMESA
-  std::printf("(osmesa: absent, not found at build time)");
-#endif
-  std::printf("\n");
-  if (copt.backend == "egl-device") {
-    auto devices = list_egl_devices();
-    std::printf("EGL devices: %zu\n", devices.size());
-    for (const auto& d : devices)
-      std::printf("  --device %d: %s%s%s\n", d.index, d.extensions.c_str(),
-                  d.drm_file.empty() ? "" : (" " + d.drm_file).c_str(),
-                  d.renderer.empty() ? "" : (" " + d.renderer).c_str());
-  }
-  auto ctx = create_context(copt);
-  auto gl = GlInfo::query();
-  auto yes = [](bool b) { return b ? "yes" : "no"; };
-  std::printf("backend:        %s\ndevice:         %s\n", ctx->backend().c_str(), ctx->device().c_str());
-  std::printf("GL_VENDOR:      %s\nGL_RENDERER:    %s\nGL_VERSION:     %s\nGLSL:           %s\n", gl.vendor.c_str(),
-              gl.renderer.c_str(), gl.version.c_str(), gl.glsl_version.c_str());
-  std::printf("software renderer: %s (primary timer: %s)\n", yes(gl.is_software_renderer()),
-              gl.is_software_renderer() ? "CPU clock around glFinish" : "GL_TIME_ELAPSED queries");
-  std::printf("compute shaders: %s\ntimer queries:   %s\nimage atomics:   %s\nfragment_shader_interlock: %s",
-              yes(gl.has_compute()), yes(gl.has_timer_query()), yes(gl.has_version(4, 2)),
-              yes(gl.has_fragment_shader_interlock()));
-  for (const char* e : {"GL_ARB_fragment_shader_interlock", "GL_NV_fragment_shader_interlock",
-                        "GL_INTEL_fragment_shader_ordering"})
-    if (gl.has_extension(e)) std::printf(" (%s)", e);
-  std::printf("\n");
-  for (const char* e : {"GL_ARB_shader_clock", "GL_ARB_shader_ballot", "GL_ARB_gpu_shader_int64",
-                        "GL_NV_shader_atomic_int64", "GL_ARB_bindless_texture", "GL_KHR_debug",
-                        "GL_ARB_get_program_binary", "GL_ARB_pipeline_statistics_query"})
-    std::printf("%-34s %s\n", e, yes(gl.has_extension(e)));
-  for (const auto& [k, v] : gl.limits) std::printf("%-40s %lld\n", k.c_str(), v);
-  std::printf("extensions: %zu\n", gl.extensions.size());
-  return 0;
-}
-
 }  // namespace
 
 int run_cli(int argc, char** argv) {
   Registry registry;
-  register_all_experiments(registry);
+  try {
+    register_all_experiments(registry);
+  } catch (const std::logic_error& e) {  // an experiment declares a clashing metric or parameter
+    std::fprintf(stderr, "oitbench: internal error registering the experiments: %s\n", e.what());
+    return 1;
+  }
 
   CLI::App app{"oitbench: GPU microbenchmarks and occupancy studies for order-independent transparency.\n"
                "Runs isolated GL experiments headless (EGL surfaceless by default, Mesa llvmpipe or a real\n"
@@ -112,8 +48,11 @@ int run_cli(int argc, char** argv) {
   app.require_subcommand(1);
 
   auto* list = app.add_subcommand("list", "List the experiments with their parameters (or the presets)");
-  bool list_presets_flag = false;
-  list->add_flag("--presets", list_presets_flag, "List the presets (named grids in presets/*.json)");
+  ListOptions lopt;
+  lopt.preset_dir = default_preset_dir();
+  list->add_flag("--presets", lopt.presets, "List the presets (named grids in presets/*.json)");
+  list->add_option("--schema", lopt.schema,
+                   "Print the CSV schema (columns with role, type, unit and meaning; statuses) as FORMAT: json");
 
   ContextOptions copt;
   auto add_backend = [&](CLI::App* cmd) {
@@ -130,14 +69,16 @@ int run_cli(int argc, char** argv) {
                           "case\n(or interleaved group) finishes: Ctrl-C leaves every finished row.\n") +
               kExitCodes);
   add_backend(run);
-  std::vector<std::string> names, sets;
-  std::string preset, resolution, preset_dir = default_preset_dir();
-  RunOptions ropt;
+  RunCommand rc;
+  rc.preset_dir = lopt.preset_dir;
+  RunOptions& ropt = rc.options;
   ropt.shader_root = default_shader_root();
-  run->add_option("experiments", names, "Experiment names, or 'all' (see: oitbench list)");
-  run->add_option("--set", sets, "NAME=V1,V2,... (integer ranges A..B or A..B:STEP); repeatable")->take_all();
-  run->add_option("--preset", preset, "Run a named grid from presets/ (see: oitbench list --presets)");
-  run->add_option("--resolution", resolution, "Render target WIDTHxHEIGHT (default: each experiment's own)");
+  run->add_option("experiments", rc.experiments, "Experiment names, or 'all' (see: oitbench list)");
+  run->add_option("--set", rc.sets, "NAME=V1,V2,... (integer ranges A..B or A..B:STEP); repeatable. A parameter "
+                                    "scoped to some techniques or variants must apply to at least one selected case")
+      ->take_all();
+  run->add_option("--preset", rc.preset, "Run a named grid from presets/ (see: oitbench list --presets)");
+  run->add_option("--resolution", rc.resolution, "Render target WIDTHxHEIGHT (default: each experiment's own)");
   run->add_option("--reps", ropt.reps, "Timed repetitions per case (default 5; --quick 3)")->check(CLI::Range(1, 100000));
   run->add_option("--warmup", ropt.warmup, "Untimed repetitions first (default 1)")->check(CLI::Range(0, 1000));
   run->add_flag("--quick", ropt.quick, "Each experiment's small grid and resolution: finishes in seconds");
@@ -156,7 +97,7 @@ int run_cli(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   run->add_flag("--no-progress", no_progress, "No progress line on stderr");
   run->add_option("--shaders", ropt.shader_root, "Shader directory (default: the source tree's shaders/)");
-  run->add_option("--presets-dir", preset_dir, "Preset directory (default: the source tree's presets/)");
+  run->add_option("--presets-dir", rc.preset_dir, "Preset directory (default: the source tree's presets/)");
   run->add_option("--preset-name", ropt.preset_name, "Recorded in the preset column")->group("");
   run->add_flag("--isolated-child", ropt.isolated_child, "Set by the parent for an isolated case")->group("");
 
@@ -164,14 +105,13 @@ int run_cli(int argc, char** argv) {
       "render", "Render one scene view with one OIT technique and write the image (PNG), |image - exact| x 8, "
                 "the depth complexity in false colour and its histogram (CSV), plus the case's CSV row");
   add_backend(render);
-  std::string r_scene = "planes", r_view = "fwd", r_technique = "BASE-IS", r_out = "render.png", r_resolution = "512x512";
-  std::vector<std::string> r_sets;
-  render->add_option("--scene", r_scene, "Scene name (scenes/NAME.json)");
-  render->add_option("--view", r_view, "View named in the scene file");
-  render->add_option("--technique", r_technique, "Technique (see: oitbench list, experiment oit)");
-  render->add_option("--out,-o", r_out, "Image file (.png); beside it: .pfm (float), -diff8.png, -depth.png, -depth-histogram.csv, .csv");
-  render->add_option("--resolution", r_resolution, "WIDTHxHEIGHT");
-  render->add_option("--set", r_sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8)")->take_all();
+  RenderCommand rn;
+  render->add_option("--scene", rn.scene, "Scene name (scenes/NAME.json)");
+  render->add_option("--view", rn.view, "View named in the scene file");
+  render->add_option("--technique", rn.technique, "Technique (see: oitbench list, experiment oit)");
+  render->add_option("--out,-o", rn.out, "Image file (.png); beside it: .pfm (float), -diff8.png, -depth.png, -depth-histogram.csv, .csv");
+  render->add_option("--resolution", rn.resolution, "WIDTHxHEIGHT");
+  render->add_option("--set", rn.sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8)")->take_all();
 
   auto* view = app.add_subcommand(
       "view", "Open a window on one scene, rendered live by the oit experiment's cases: fly camera, keys to switch "
@@ -205,83 +145,20 @@ int run_cli(int argc, char** argv) {
   }
 
   try {
-    if (*list) {
-      print_list(registry, list_presets_flag, preset_dir);
-      return 0;
-    }
-    if (*info) return print_info(copt);
+    if (*list) return list_command(registry, lopt);
+    if (*info) return info_command(copt);
     if (*view) return viewer::run_viewer(registry, v_opt);
-    if (*render) {
-      std::string stem = r_out.ends_with(".png") ? r_out.substr(0, r_out.size() - 4) : r_out;
-      RunRequest req{"oit", {{"scene", {r_scene}}, {"view", {r_view}}, {"technique", {r_technique}}, {"dump", {stem}}},
-                     parse_resolution(r_resolution), 1, 0};
-      for (const auto& s : r_sets) {
-        auto [k, v] = parse_set_option(s);
-        if (v.size() != 1) throw UsageError("render: --set " + k + " takes one value");
-        req.overrides[k] = v;
-      }
-      ropt.context = copt;
-      ropt.out = stem + ".csv";
-      ropt.progress = false;
-      int rc = run_experiments(registry, {req}, ropt);
-      // Name only what is there: a case that failed wrote no image, an approximate one no depth view.
-      std::string wrote;
-      for (const char* suffix : {".png", ".pfm", "-diff8.png", "-depth.png", "-depth-histogram.csv", ".csv"})
-        if (std::filesystem::exists(stem + suffix)) wrote += (wrote.empty() ? "" : ", ") + stem + suffix;
-      if (!std::filesystem::exists(stem + ".png"))
-        std::fprintf(stderr, "oitbench: no image written: the case did not finish (see its row in %s.csv)\n", stem.c_str());
-      if (!wrote.empty()) std::fprintf(stderr, "oitbench: wrote %s\n", wrote.c_str());
-      return rc;
-    }
-
     ropt.context = copt;
+    if (*render) {
+      rn.options = ropt;
+      return render_command(registry, rn);
+    }
     ropt.reps_given = run->count("--reps") > 0;
     ropt.warmup_given = run->count("--warmup") > 0;
     ropt.interleave = !no_interleave;
     ropt.program_cache = !no_program_cache;
     ropt.progress = !no_progress;
-    if (!resolution.empty()) ropt.resolution = parse_resolution(resolution);
-    std::map<std::string, std::vector<std::string>> overrides;
-    for (const auto& s : sets) {
-      auto [k, v] = parse_set_option(s);
-      overrides[k] = v;
-    }
-    std::vector<RunRequest> requests;
-    if (!preset.empty()) {
-      if (!names.empty()) throw UsageError("give either --preset or experiment names, not both");
-      auto p = load_preset(preset_dir, preset);
-      if (ropt.preset_name.empty()) ropt.preset_name = p.name;
-      requests = p.runs;
-      for (auto& r : requests)
-        for (const auto& [k, v] : overrides) r.overrides[k] = v;
-    } else {
-      if (names.empty())
-        throw UsageError("run: name an experiment, 'all' or --preset NAME; experiments: " + registry.names());
-      for (const auto& n : names) {
-        if (n == "all") {
-          for (const auto& e : registry.all()) requests.push_back({e->name(), {}, {}, {}, {}});
-        } else {
-          requests.push_back({n, {}, {}, {}, {}});
-        }
-      }
-      // With several experiments a --set applies where the parameter exists; it must exist somewhere.
-      for (const auto& [k, v] : overrides) {
-        bool used = false;
-        for (auto& r : requests) {
-          const auto* e = registry.find(r.experiment);
-          if (!e) continue;
-          for (const auto& p : registry.params_of(*e))
-            if (p.name == k) {
-              r.overrides[k] = v;
-              used = true;
-            }
-        }
-        if (!used && requests.size() > 1)
-          throw UsageError("no selected experiment has a parameter '" + k + "' (see: oitbench list)");
-        if (!used) requests[0].overrides[k] = v;  // check_requests names the valid parameters
-      }
-    }
-    return run_experiments(registry, requests, ropt);
+    return run_command(registry, rc);
   } catch (const UsageError& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 2;

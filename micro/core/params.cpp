@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 namespace oitbench {
@@ -55,6 +56,32 @@ void ParamSpec::check(const std::string& value, const std::string& experiment) c
                      "'; expected " + allowed_text());
 }
 
+bool ParamSpec::applies(const ParamSet& p) const {
+  for (const auto& c : applies_when) {
+    if (!p.has(c.param)) return false;
+    const auto& v = p.get(c.param);
+    if (std::find(c.values.begin(), c.values.end(), v) == c.values.end()) return false;
+  }
+  return true;
+}
+
+std::string ParamSpec::scope_text() const {
+  std::string s;
+  for (const auto& c : applies_when) {
+    std::string values;
+    for (const auto& v : c.values) values += (values.empty() ? "" : ", ") + v;
+    s += (s.empty() ? "" : " and ") + c.param + " in {" + values + "}";
+  }
+  return s;
+}
+
+std::vector<std::pair<std::string, std::string>> ParamSet::used_values() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& kv : values_)
+    if (!unused_.count(kv.first)) out.push_back(kv);
+  return out;
+}
+
 const std::string& ParamSet::get(const std::string& name) const {
   for (const auto& [k, v] : values_)
     if (k == name) return v;
@@ -75,7 +102,7 @@ void ParamSet::set(const std::string& name, const std::string& value) {
 }
 std::string ParamSet::describe() const {
   std::string s;
-  for (const auto& [k, v] : values_) s += (s.empty() ? "" : " ") + k + "=" + v;
+  for (const auto& [k, v] : used_values()) s += (s.empty() ? "" : " ") + k + "=" + v;
   return s;
 }
 
@@ -110,12 +137,19 @@ std::pair<std::string, std::vector<std::string>> parse_set_option(const std::str
 
 std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
                                   const std::map<std::string, std::vector<std::string>>& overrides, bool quick) {
+  auto values_of = [&](const ParamSpec& spec) -> const std::vector<std::string>& {
+    auto it = overrides.find(spec.name);
+    return it != overrides.end() ? it->second : (quick && !spec.quick.empty()) ? spec.quick : spec.defaults;
+  };
+  // Bound the work before building it: the product of the value counts (scoping only shrinks it).
+  double product = 1;
+  for (const auto& spec : specs) product *= static_cast<double>(std::max<size_t>(values_of(spec).size(), 1));
+  if (product > static_cast<double>(kMaxGridCases))
+    throw UsageError("the parameter grid has " + fmt_num(product) + " cases, more than " +
+                     std::to_string(kMaxGridCases) + "; narrow a --set list");
   std::vector<ParamSet> out{ParamSet{}};
   for (const auto& spec : specs) {
-    auto it = overrides.find(spec.name);
-    const auto& values = it != overrides.end() ? it->second
-                         : (quick && !spec.quick.empty()) ? spec.quick
-                                                          : spec.defaults;
+    const auto& values = values_of(spec);
     std::vector<ParamSet> next;
     next.reserve(out.size() * values.size());
     for (const auto& base : out)
@@ -126,7 +160,35 @@ std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
       }
     out = std::move(next);
   }
-  return out;
+  // Scoping, in spec order: a condition reads parameters declared before or after the scoped one.
+  std::vector<ParamSet> cases;
+  std::set<std::vector<std::pair<std::string, std::string>>> seen;
+  std::set<std::string> applied;
+  for (auto& c : out) {
+    for (const auto& spec : specs) {
+      if (spec.applies(c)) {
+        applied.insert(spec.name);
+      } else {
+        if (!spec.defaults.empty()) c.set(spec.name, spec.defaults.front());
+        c.mark_unused(spec.name);
+      }
+    }
+    if (seen.insert(c.used_values()).second) cases.push_back(c);
+  }
+  for (const auto& spec : specs)
+    if (overrides.count(spec.name) && !applied.count(spec.name)) {
+      std::string selected;
+      for (const auto& cond : spec.applies_when) {
+        std::set<std::string> vals;
+        for (const auto& c : out) vals.insert(c.get(cond.param));
+        std::string list;
+        for (const auto& v : vals) list += (list.empty() ? "" : ",") + v;
+        selected += (selected.empty() ? "" : ", ") + cond.param + "=" + list;
+      }
+      throw UsageError("parameter '" + spec.name + "' applies only where " + spec.scope_text() +
+                       "; no selected case has that (" + selected + ")");
+    }
+  return cases;
 }
 
 }  // namespace oitbench

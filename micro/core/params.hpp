@@ -2,6 +2,7 @@
 // Experiment parameters: their specs (what `oitbench list` prints and the CLI validates),
 // one case's values, and the cartesian product of value lists (like hyperfine's --parameter-list).
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -14,6 +15,8 @@ class UsageError : public std::runtime_error {  // bad command line or preset: e
   using std::runtime_error::runtime_error;
 };
 
+class ParamSet;
+
 struct ParamSpec {
   enum class Kind { Text, Integer, Number };
   std::string name;
@@ -23,6 +26,21 @@ struct ParamSpec {
   std::vector<std::string> allowed;   // enumerated values; empty means any value of `kind` in [min, max]
   Kind kind = Kind::Text;
   double min = -1e300, max = 1e300;
+  // Where the parameter means something: every condition must hold (another parameter of the case
+  // takes one of the values). Empty: every case. A case it does not apply to runs with its first
+  // default and writes the column empty; a --set of it where no case uses it is a usage error.
+  struct Condition {
+    std::string param;
+    std::vector<std::string> values;
+  };
+  std::vector<Condition> applies_when = {};
+
+  ParamSpec& only_when(std::string param, std::vector<std::string> values) {
+    applies_when.push_back({std::move(param), std::move(values)});
+    return *this;
+  }
+  bool applies(const ParamSet& p) const;
+  std::string scope_text() const;  // "technique in {MLAB, AT}"; empty for an unscoped parameter
 
   // Throws UsageError naming the parameter and listing the valid values.
   void check(const std::string& value, const std::string& experiment) const;
@@ -38,18 +56,28 @@ class ParamSet {
   bool has(const std::string& name) const;
   long long get_int(const std::string& name) const;
   double get_double(const std::string& name) const;
+  // Every parameter, those that do not apply to this case included (at their defaults).
   const std::vector<std::pair<std::string, std::string>>& values() const { return values_; }
-  std::string describe() const;  // "n=8 stage=compute"
+  // Only the parameters this case uses: what its rows record and what tells two cases apart.
+  std::vector<std::pair<std::string, std::string>> used_values() const;
+  bool uses(const std::string& name) const { return has(name) && !unused_.count(name); }
+  void mark_unused(const std::string& name) { unused_.insert(name); }
+  std::string describe() const;  // "n=8 stage=compute" (the parameters it uses)
   void set(const std::string& name, const std::string& value);
 
  private:
   std::vector<std::pair<std::string, std::string>> values_;
+  std::set<std::string> unused_;
 };
 
 // Splits "name=v1,v2,..." (with integer ranges "a..b" and "a..b:step" expanded); throws UsageError.
 std::pair<std::string, std::vector<std::string>> parse_set_option(const std::string& text);
 
 // The product over the specs: an override list replaces that parameter's defaults (or quick grid).
+// A parameter that does not apply to a case (ParamSpec::applies_when) is set to its first default
+// and marked unused, and cases that then agree on every used parameter are kept once. Throws
+// UsageError when an override applies to no case, or when the grid exceeds kMaxGridCases.
+inline constexpr size_t kMaxGridCases = 100000;
 std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
                                   const std::map<std::string, std::vector<std::string>>& overrides, bool quick);
 

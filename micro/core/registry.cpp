@@ -14,6 +14,34 @@ gl::Program CaseContext::build(const std::vector<ShaderStage>& stages, Defines d
 
 void Registry::add(std::unique_ptr<Experiment> e) {
   if (find(e->name())) throw std::logic_error("experiment '" + e->name() + "' registered twice");
+  auto param_owner = [&](const std::string& name) -> std::string {
+    for (const auto& p : params_of(*e))
+      if (p.name == name) return e->name();
+    for (const auto& x : experiments_)
+      for (const auto& p : params_of(*x))
+        if (p.name == name) return x->name();
+    return "";
+  };
+  for (const auto& m : e->metric_specs()) {
+    for (const auto& c : summary_base_columns())
+      if (c.name == m.name)
+        throw std::logic_error("experiment '" + e->name() + "': metric '" + m.name + "' is a framework column");
+    if (auto owner = param_owner(m.name); !owner.empty())
+      throw std::logic_error("experiment '" + e->name() + "': metric '" + m.name + "' has the name of a parameter of '" +
+                             owner + "'; a column is either a parameter or a metric");
+    for (const auto& x : experiments_)
+      for (const auto& other : x->metric_specs())
+        if (other.name == m.name && (other.type != m.type || other.unit != m.unit))
+          throw std::logic_error("experiment '" + e->name() + "': metric '" + m.name + "' (" + value_type_name(m.type) +
+                                 ", '" + m.unit + "') differs from '" + x->name() + "''s (" +
+                                 value_type_name(other.type) + ", '" + other.unit + "')");
+  }
+  for (const auto& p : params_of(*e))
+    for (const auto& x : experiments_)
+      for (const auto& m : x->metric_specs())
+        if (m.name == p.name)
+          throw std::logic_error("experiment '" + e->name() + "': parameter '" + p.name + "' has the name of a metric of '" +
+                                 x->name() + "'");
   experiments_.push_back(std::move(e));
   std::sort(experiments_.begin(), experiments_.end(),
             [](const auto& a, const auto& b) { return a->name() < b->name(); });

@@ -12,6 +12,7 @@
 
 #include "backends/backend.hpp"
 #include "core/params.hpp"
+#include "core/schema.hpp"
 #include "gl/shader.hpp"
 #include "core/timer.hpp"
 
@@ -37,14 +38,18 @@ struct Validation {
 // case's framework-level settings (fault injection for testing validators, the random seed).
 class CaseContext {
  public:
-  CaseContext(const ShaderLibrary& shaders, const GlInfo& gl, Resolution res, std::string fault, unsigned seed)
-      : shaders_(shaders), gl_(gl), res_(res), fault_(std::move(fault)), seed_(seed) {}
+  CaseContext(const ShaderLibrary& shaders, const GlInfo& gl, Resolution res, std::string fault, unsigned seed,
+              std::string image_stem = "")
+      : shaders_(shaders), gl_(gl), res_(res), fault_(std::move(fault)), seed_(seed), image_stem_(std::move(image_stem)) {}
   const ShaderLibrary& shaders() const { return shaders_; }
   const GlInfo& gl() const { return gl_; }
   int width() const { return res_.width; }
   int height() const { return res_.height; }
   unsigned seed() const { return seed_; }
   const std::string& fault() const { return fault_; }
+  // Where a case that can show its result writes images at validation (STEM.png, STEM-diff8.png,
+  // ...): an output option of `oitbench render`, not a parameter. Empty: no images.
+  const std::string& image_stem() const { return image_stem_; }
   // Compiles with the experiment's defines plus the fault define (OITBENCH_FAULT_WRONG_RESULT, ...).
   gl::Program build(const std::vector<ShaderStage>& stages, Defines defines) const;
 
@@ -54,6 +59,7 @@ class CaseContext {
   Resolution res_;
   std::string fault_;
   unsigned seed_;
+  std::string image_stem_;
 };
 
 class CaseInstance {
@@ -74,7 +80,10 @@ class Experiment {
   virtual std::string name() const = 0;
   virtual std::string description() const = 0;
   virtual std::vector<ParamSpec> params() const = 0;
-  virtual std::vector<std::string> metric_columns() const { return {}; }
+  // The metric columns its rows fill (values come from Validation::metrics or CaseInstance::metrics()).
+  // A metric may share a name with another experiment's only with the same type and unit, and
+  // never with a parameter or a framework column: Registry::add refuses both.
+  virtual std::vector<MetricSpec> metric_specs() const { return {}; }
   virtual Resolution default_resolution() const { return {800, 600}; }
   virtual Resolution quick_resolution() const { return {256, 256}; }
   // Variants that can hang a real GPU (spinlocks): each case runs in a child process under a watchdog.
@@ -88,6 +97,8 @@ class Experiment {
 
 class Registry {
  public:
+  // Throws std::logic_error for a second experiment of the same name, or a metric that collides
+  // with a parameter, a framework column or another experiment's metric of another type or unit.
   void add(std::unique_ptr<Experiment> e);
   const Experiment* find(const std::string& name) const;
   Experiment* find(const std::string& name);

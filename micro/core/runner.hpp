@@ -1,15 +1,17 @@
 #pragma once
 // Runs experiments: expands grids, interleaves the cases' repetitions, validates, writes rows.
+// The pieces live beside it: rows.hpp (statistics into rows), provenance.hpp (what a row records
+// about the run), isolation.hpp (child processes, the watchdog), progress.hpp (the progress line).
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/provenance.hpp"
 #include "core/registry.hpp"
+#include "core/schema.hpp"
 
 namespace oitbench {
-
-inline constexpr int kCsvSchema = 1;
 
 // One experiment to run, from the command line or from one entry of a preset.
 struct RunRequest {
@@ -35,23 +37,18 @@ struct RunOptions {
   bool progress = true;
   std::string preset_name;       // recorded in each row
   std::string shader_root;       // where shaders/ lives
-  bool program_cache = true;
-  bool isolated_child = false;   // this process runs one case for a parent: no summary line     // reuse linked programs (glGetProgramBinary) across runs
+  bool program_cache = true;     // reuse linked programs (glGetProgramBinary) across runs
+  bool isolated_child = false;   // this process runs one case for a parent: no summary line
+  std::string image_stem;        // render: where a case writes its images (CaseContext::image_stem)
 };
 
-// The CSV columns a run writes: fixed base columns, recorded environment, every registered
-// experiment's metric columns and parameters (so files from any run of this schema concatenate).
-std::vector<std::string> csv_columns(const Registry& registry);
-std::vector<std::string> raw_columns(const Registry& registry);
-
-// Validates the requests against the registry (throws UsageError listing the valid names).
-void check_requests(const Registry& registry, const std::vector<RunRequest>& requests);
+// Validates the requests against the registry and their grids (throws UsageError listing the valid
+// names); `quick`: every request uses its experiment's --quick grid.
+void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick = false);
 
 // Returns the process exit code: 0 finished, 1 errors or timeouts or interrupted (130), 3 nothing ran (unsupported).
 int run_experiments(Registry& registry, const std::vector<RunRequest>& requests, const RunOptions& options);
 
-// Exposed for tests and the CLI.
 std::string default_shader_root();
-const char* git_sha();  // generated at build time (cmake/version.cmake)
 
 }  // namespace oitbench

@@ -176,7 +176,9 @@ class InsertExperiment final : public Experiment {
                      {"registers", "local"}};
     return {variant, size, repeat, keys, memory};
   }
-  std::vector<std::string> metric_columns() const override { return {"mismatched_pixels"}; }
+  std::vector<MetricSpec> metric_specs() const override {
+    return {{"mismatched_pixels", ValueType::Integer, "", "pixels whose array differs from the CPU reference"}};
+  }
   Resolution default_resolution() const override { return {256, 256}; }
   Resolution quick_resolution() const override { return {128, 128}; }
   std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {

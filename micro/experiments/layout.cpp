@@ -137,8 +137,10 @@ class LayoutExperiment final : public Experiment {
     // The compared parameter last: the grid's innermost loop, so one interleaved group holds all layouts.
     return {nodes, layers, draws, order, layout};
   }
-  std::vector<std::string> metric_columns() const override {
-    return {"lost_updates", "lost_pixels", "inconsistent_nodes"};
+  std::vector<MetricSpec> metric_specs() const override {
+    return {{"lost_updates", ValueType::Integer, "", "writes that did not land"},
+            {"lost_pixels", ValueType::Integer, "", "pixels with at least one lost write"},
+            {"inconsistent_nodes", ValueType::Integer, "", "nodes whose halves disagree (a torn write)"}};
   }
   Resolution default_resolution() const override { return {800, 800}; }  // the thesis's
   Resolution quick_resolution() const override { return {128, 128}; }

@@ -19,6 +19,7 @@
 #include "gl/render_target.hpp"
 #include "oit/approx.hpp"
 #include "oit/fragment_lists.hpp"
+#include "oit/metrics.hpp"
 #include "oit/reference.hpp"
 
 namespace oitbench {
@@ -302,9 +303,12 @@ class LinesExperiment final : public Experiment {
     ParamSpec alpha{"alpha", "opacity of every hair segment", {"0.3"}, {}, {}, ParamSpec::Kind::Number, 0, 1};
     return {technique, segments, slices, alpha};
   }
-  std::vector<std::string> metric_columns() const override {
-    return {"line_segments", "total_fragments", "peak_depth", "rmse", "psnr", "max_abs_error", "frac_pixels_off",
-            "nonfinite"};
+  std::vector<MetricSpec> metric_specs() const override {
+    std::vector<MetricSpec> m = {{"line_segments", ValueType::Integer, "", "line segments drawn"},
+                                 {"total_fragments", ValueType::Integer, "", "fragments captured in the view"},
+                                 {"peak_depth", ValueType::Integer, "", "most fragments in one pixel"}};
+    for (auto& e : oit::image_error_metrics()) m.push_back(std::move(e));
+    return m;
   }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {128, 128}; }

@@ -121,8 +121,12 @@ class OccupancyExperiment final : public Experiment {
     for (const auto& g : gpu_budgets()) model.allowed.push_back(g.key);
     return {variant, size, draws, model};
   }
-  std::vector<std::string> metric_columns() const override {
-    return {"predicted_occupancy", "predicted_threads_per_sm", "model_gpu_used", "mismatched_pixels"};
+  std::vector<MetricSpec> metric_specs() const override {
+    return {{"predicted_occupancy", ValueType::Number, "", "resident warps or waves per SM / CU over the maximum, from "
+                                                          "the analytic model (model_gpu)"},
+            {"predicted_threads_per_sm", ValueType::Integer, "", "resident threads per SM the model predicts"},
+            {"model_gpu_used", ValueType::Text, "", "the GPU whose budgets the model used, or unknown"},
+            {"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"}};
   }
   Resolution default_resolution() const override { return {800, 600}; }
   Resolution quick_resolution() const override { return {200, 150}; }

@@ -9,6 +9,7 @@
 #include "core/registry.hpp"
 #include "oit/approx.hpp"
 #include "oit/fragment_storage.hpp"
+#include "oit/metrics.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/scene.hpp"
 
@@ -63,18 +64,52 @@ class OitExperiment final : public Experiment {
                                  "per-pixel arrays (a count pass, a prefix sum that sizes the buffer exactly, a fill "
                                  "pass; no next pointers)",
                       {"PPLL"}, {}, capture_storage_names()};
+    // Each technique parameter is scoped to the techniques that read it, so a row carries only its own.
+    const auto& exact = exact_technique_names();
+    auto exact_but = [&](const std::string& skip) {
+      std::vector<std::string> v;
+      for (const auto& t : exact)
+        if (t != skip) v.push_back(t);
+      return v;
+    };
+    block.only_when("technique", {"BASE-RBS-L", "BMA-RBS-L", "CS-RBS-L", "RBS-G", "BMA-AUTO"});
+    pool.only_when("technique", exact);
+    max_frags.only_when("technique", exact_but("CPU-NATIVE"));
+    cs_group.only_when("technique", {"CS-IS", "CS-IMS", "CS-RBS-L"});
+    auto_cache.only_when("technique", {"BMA-AUTO"});
     std::vector<ParamSpec> ps = {scene, view, technique, capture, detail, block, pool, max_frags, cs_group, auto_cache};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     return ps;
   }
-  std::vector<std::string> metric_columns() const override {
-    return {"polygons",         "total_fragments", "peak_depth",     "mean_depth",    "fragments_per_s",
-            "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
-            "node_pool_bytes",  "capture_count_ms", "bma_auto_choice", "bma_auto_source", "bma_auto_timings",
-            "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels",
-            // approximate techniques (micro/oit/approx.cpp)
-            "psnr", "frac_pixels_off", "model_rmse", "model_max_diff", "nonfinite", "capped_updates", "flicker",
-            "flicker_max", "flicker_pixels"};
+  std::vector<MetricSpec> metric_specs() const override {
+    using T = ValueType;
+    std::vector<MetricSpec> m = fragment_metrics();
+    std::vector<MetricSpec> own = {
+        {"fragments_per_s", T::Number, "fragments/s", "capture throughput: total_fragments over the capture median"},
+        {"max_frags_used", T::Integer, "", "MAX_FRAGS the resolve was compiled with (max_frags, or the view's "
+                                           "next power of two when max_frags=0)"},
+        {"truncated_pixels", T::Integer, "", "pixels deeper than max_frags_used (their deepest fragments dropped)"},
+        {"node_pool", T::Integer, "", "fragment slots allocated"},
+        {"overflow_rerenders", T::Integer, "", "captures redone because the node pool overflowed"},
+        {"bma_intervals", T::Text, "", "BMA: pixels per depth interval, TOP:COUNT;..."},
+        {"node_pool_bytes", T::Integer, "bytes", "fragment storage allocated (nodes, next pointers, heads or offsets)"},
+        {"capture_count_ms", T::Number, "ms", "PPPA: the count pass and prefix sum, median"},
+        {"bma_auto_choice", T::Text, "", "BMA-AUTO: the sort chosen per interval"},
+        {"bma_auto_source", T::Text, "", "BMA-AUTO: calibrated now or read from the cache"},
+        {"bma_auto_timings", T::Text, "", "BMA-AUTO: the calibration's medians per candidate"},
+        {"bad_pixels", T::Integer, "", "pixels more than the tolerance off the exact reference"},
+        {"visit_errors", T::Integer, "", "pixels resolved zero or several times (BMA must resolve each once)"},
+        {"tied_pixels", T::Integer, "", "pixels with fragments of equal depth (their order is by colour)"},
+        // approximate techniques (micro/oit/approx.cpp)
+        {"model_rmse", T::Number, "", "rmse of the technique's CPU model against the exact reference"},
+        {"model_max_diff", T::Number, "", "largest channel difference between the GPU image and the CPU model"},
+        {"capped_updates", T::Integer, "", "insertions that gave up on the spinlock after SPIN_CAP tries"},
+        {"flicker", T::Number, "", "per-pixel variance across flicker_runs frames, mean over pixels"},
+        {"flicker_max", T::Number, "", "its largest pixel"},
+        {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"}};
+    for (auto& x : own) m.push_back(std::move(x));
+    for (auto& x : image_error_metrics()) m.push_back(std::move(x));
+    return m;
   }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {128, 128}; }

@@ -238,7 +238,10 @@ class SortExperiment final : public Experiment {
                      {"listing"}, {}, {"listing", "direct", "loop", "switch", "if-else"}};
     return {variant, n, stage, memory, keys, assign};
   }
-  std::vector<std::string> metric_columns() const override { return {"unsorted_pixels", "changed_pixels"}; }
+  std::vector<MetricSpec> metric_specs() const override {
+    return {{"unsorted_pixels", ValueType::Integer, "", "pixels whose keys are out of order after the sort"},
+            {"changed_pixels", ValueType::Integer, "", "pixels whose multiset of (key, payload) pairs changed"}};
+  }
   // 256x256: 65,536 pixels sort like the thesis' 640,000 (800x800) in the same shape, while a
   // local-memory insertion sort of 32 reverse-ordered keys still takes ~0.1 s per pass on llvmpipe.
   Resolution default_resolution() const override { return {256, 256}; }

@@ -186,8 +186,11 @@ class SpinlockExperiment final : public Experiment {
     // The compared parameter last: the variants of one grid point run one after another.
     return {layers, draws, cap, variant};
   }
-  std::vector<std::string> metric_columns() const override {
-    return {"lost_updates", "capped_updates", "mismatched_pixels", "lock_extension"};
+  std::vector<MetricSpec> metric_specs() const override {
+    return {{"lost_updates", ValueType::Integer, "", "writes that did not land"},
+            {"capped_updates", ValueType::Integer, "", "insertions that gave up on the spinlock after SPIN_CAP tries"},
+            {"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"},
+            {"lock_extension", ValueType::Text, "", "the interlock extension used, or none"}};
   }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {64, 64}; }

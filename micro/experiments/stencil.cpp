@@ -176,8 +176,10 @@ class StencilExperiment final : public Experiment {
     // The compared parameter last: stencil and no-stencil of one grid point are interleaved together.
     return {coverage, resolve, nodes, layers, variant};
   }
-  std::vector<std::string> metric_columns() const override {
-    return {"mismatched_pixels", "touched_outside", "covered_pixels"};
+  std::vector<MetricSpec> metric_specs() const override {
+    return {{"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"},
+            {"touched_outside", ValueType::Integer, "", "pixels outside the coverage the resolve wrote"},
+            {"covered_pixels", ValueType::Integer, "", "pixels inside the coverage"}};
   }
   Resolution default_resolution() const override { return {800, 800}; }  // the thesis's
   Resolution quick_resolution() const override { return {128, 128}; }

@@ -318,7 +318,9 @@ ApproxTechnique parse_approx_technique(const std::string& name) {
 
 std::vector<ParamSpec> approx_params() {
   using K = ParamSpec::Kind;
-  return {
+  const std::vector<std::string> arrays = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT"};
+  const std::vector<std::string> guarded = {"AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT"};
+  std::vector<ParamSpec> ps = {
       {"nodes", "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16)", {"8"}, {}, {}, K::Integer, 2, 64},
       {"storage", "node storage of the per-pixel array techniques (shaders/storage/)", {"ssbo"}, {},
        {"ssbo", "texture3d", "interleaved"}},
@@ -326,13 +328,19 @@ std::vector<ParamSpec> approx_params() {
        {"eq7"}, {}, {"none", "eq7", "eq10"}},
       {"sync", "per-pixel insertion: spinlock (Listing 4.3, capped) or interlock (ARB_fragment_shader_interlock)",
        {"spinlock"}, {}, {"spinlock", "interlock"}},
-      {"guard", "numeric guards (off: the deliberately unguarded variant the hard-case tests use)", {"on"}, {},
-       {"on", "off"}},
+      {"guard", "numeric guards of the AT family and WBOIT (off: the deliberately unguarded variant the hard-case "
+                "tests use)",
+       {"on"}, {}, {"on", "off"}},
       {"flicker_runs", "frames kept for the flicker metric (per-pixel variance across runs; 0: off)", {"4"}, {}, {},
        K::Integer, 0, 64},
-      {"dump", "write <dump>.png and <dump>-diff8.png (|image - exact| x 8) at validation; empty: no images", {""},
-       {}, {}},
   };
+  ps[0].only_when("technique", arrays);
+  ps[1].only_when("technique", arrays);
+  ps[2].only_when("technique", {"WBOIT"});
+  ps[3].only_when("technique", arrays);
+  ps[4].only_when("technique", guarded);
+  ps[5].only_when("technique", approx_technique_names());
+  return ps;
 }
 
 ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings& st) {
@@ -450,7 +458,7 @@ class ApproxCase final : public OitCase {
         out_(ctx.width(), ctx.height(), GL_RGBA32F),
         accum_(ctx.width(), ctx.height(), GL_RGBA32F),
         flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
-        dump_(p.get("dump")) {
+        dump_(ctx.image_stem()) {
     settings_.technique = parse_approx_technique(p.get("technique"));
     settings_.nodes = static_cast<int>(p.get_int("nodes"));
     settings_.weight = p.get("wboit_weight");

@@ -52,7 +52,7 @@ std::string fmt(double v) {
 class ExactCase final : public OitCase {
  public:
   ExactCase(const ParamSet& p, CaseContext& ctx)
-      : dump_(p.get("dump")),
+      : dump_(ctx.image_stem()),
         ctx_(ctx),
         width_(ctx.width()),
         height_(ctx.height()),
@@ -227,7 +227,7 @@ class ExactCase final : public OitCase {
     m["total_fragments"] = std::to_string(stats.total_fragments);
     m["peak_depth"] = std::to_string(stats.peak_depth);
     m["mean_depth"] = fmt(stats.mean_depth);
-    m["max_frags"] = std::to_string(max_frags_);
+    m["max_frags_used"] = std::to_string(max_frags_);
     m["node_pool"] = std::to_string(lists_->pool());
     m["node_pool_bytes"] = std::to_string(lists_->bytes());
     if (!count_ms_.empty()) m["capture_count_ms"] = fmt(median_of(count_ms_));

@@ -80,8 +80,7 @@ TEST_F(Approx, WboitWeightsAreDifferentApproximations) {
 TEST_F(Approx, PngDumpOfImageAndDiff) {
   auto dir = temp_dir("approx_dump");
   auto p = small("AT");
-  p["dump"] = (dir / "at").string();
-  auto v = run_case("oit", p);
+  auto v = run_case("oit", p, {64, 64}, (dir / "at").string());
   ASSERT_TRUE(v.valid) << v.reason;
   EXPECT_TRUE(std::filesystem::exists(dir / "at.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "at-diff8.png"));

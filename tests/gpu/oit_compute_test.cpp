@@ -164,7 +164,9 @@ TEST_F(OitCompute, QuickKnowlesPresetsRunEndToEnd) {
           << preset << " " << row.at("scene") << " " << row.at("technique") << ": " << row.at("status");
     }
     EXPECT_EQ(techniques.count("BMA-AUTO"), 1u) << preset;
-    if (std::string(preset) == "knowles2014-quick") EXPECT_EQ(techniques.size(), 12u);
+    if (std::string(preset) == "knowles2014-quick") {
+      EXPECT_EQ(techniques.size(), 12u);
+    }
   }
 }
 

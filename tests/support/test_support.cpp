@@ -130,7 +130,7 @@ void GlTest::TearDownTestSuite() {
 }
 
 Validation GlTest::run_case(const std::string& experiment, const std::map<std::string, std::string>& params,
-                            Resolution res) {
+                            Resolution res, const std::string& image_stem) {
   Experiment* e = registry_->find(experiment);
   if (!e) throw std::runtime_error("no experiment " + experiment);
   // Defaults for everything not given (the first default value of each parameter).
@@ -144,7 +144,7 @@ Validation GlTest::run_case(const std::string& experiment, const std::map<std::s
   for (const auto& [k, v] : params)
     if (!p.has(k)) throw std::runtime_error("experiment " + experiment + " has no parameter " + k);
   if (auto why = e->unsupported_reason(*info_, p); !why.empty()) throw Unsupported(why);
-  CaseContext ctx(*shaders_, *info_, res, p.get("fault"), static_cast<unsigned>(p.get_int("seed")));
+  CaseContext ctx(*shaders_, *info_, res, p.get("fault"), static_cast<unsigned>(p.get_int("seed")), image_stem);
   auto instance = e->prepare(p, ctx);
   PassTimer timer(false);
   for (int i = 0; i < 2; ++i) {

@@ -40,9 +40,9 @@ class GlTest : public ::testing::Test {
   static const ShaderLibrary& shaders() { return *shaders_; }
 
   // Prepares and runs one case of a registered experiment in this process: warm-up once, run,
-  // validate. Throws what prepare() throws.
+  // validate. Throws what prepare() throws. `image_stem`: where the case writes its images.
   static Validation run_case(const std::string& experiment, const std::map<std::string, std::string>& params,
-                             Resolution res = {64, 64});
+                             Resolution res = {64, 64}, const std::string& image_stem = "");
 
  private:
   static std::unique_ptr<Context> context_;

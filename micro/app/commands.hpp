@@ -1,0 +1,34 @@
+#pragma once
+// The subcommands of `oitbench`, one function each; app/cli.cpp parses the command line into their
+// options and maps what they throw to exit codes (2 usage, 3 no context, 1 anything else).
+#include <string>
+#include <vector>
+
+#include "core/runner.hpp"
+
+namespace oitbench::app {
+
+struct ListOptions {
+  bool presets = false;
+  std::string schema;  // "json": print the result schema instead
+  std::string preset_dir;
+};
+int list_command(const Registry& registry, const ListOptions& o);
+
+int info_command(const ContextOptions& o);
+
+struct RunCommand {
+  RunOptions options;
+  std::vector<std::string> experiments, sets;
+  std::string preset, resolution, preset_dir;
+};
+int run_command(Registry& registry, RunCommand& c);
+
+struct RenderCommand {
+  RunOptions options;
+  std::string scene = "planes", view = "fwd", technique = "BASE-IS", out = "render.png", resolution = "512x512";
+  std::vector<std::string> sets;
+};
+int render_command(Registry& registry, const RenderCommand& c);
+
+}  // namespace oitbench::app

@@ -1,0 +1,139 @@
+#include "core/rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/provenance.hpp"
+#include "core/stats.hpp"
+
+namespace oitbench {
+
+std::string fmt_number(double v, int prec) {
+  if (!std::isfinite(v)) return "";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", prec + 3, v);
+  return buf;
+}
+
+void CaseRecord::fail(Status s, const std::string& why) {
+  if (status != Status::Ok) return;
+  status = s;
+  reason = why;
+}
+
+double CaseRecord::add_repetition(const std::vector<PassSample>& samples, double total_ms) {
+  double gpu_total = samples.empty() ? -1 : 0;
+  for (const auto& s : samples) {
+    if (std::find(pass_names.begin(), pass_names.end(), s.pass) == pass_names.end()) pass_names.push_back(s.pass);
+    cpu[s.pass].push_back(s.cpu_ms);
+    gpu[s.pass].push_back(s.gpu_ms);
+    gpu_total = (gpu_total < 0 || s.gpu_ms < 0) ? -1 : gpu_total + s.gpu_ms;
+  }
+  cpu["total"].push_back(total_ms);
+  gpu["total"].push_back(gpu_total);
+  return gpu_total;
+}
+
+namespace {
+
+Row case_columns(const RowSettings& s, const CaseRecord& c) {
+  Row row = s.run;
+  row["experiment"] = s.experiment;
+  row["variant"] = c.variant;
+  row["width"] = std::to_string(s.res.width);
+  row["height"] = std::to_string(s.res.height);
+  row["reps"] = std::to_string(s.reps);
+  row["warmup"] = std::to_string(s.warmup);
+  row["timestamp_utc"] = utc_now();
+  std::string names;
+  for (const auto& [k, v] : c.params.used_values())
+    if (k != "variant") {
+      row[k] = v;
+      names += (names.empty() ? "" : ";") + k;
+    }
+  row["parameters"] = names;  // which of the columns after the base ones are this case's parameters
+  return row;
+}
+
+}  // namespace
+
+std::vector<Row> summary_rows(const RowSettings& s, const CaseRecord& c) {
+  Row base = case_columns(s, c);
+  base["status"] = status_name(c.status);
+  base["valid"] = c.status == Status::Ok ? "1" : "0";
+  base["compile_ms"] = fmt_number(c.compile_ms);
+  base["warmup_ms"] = fmt_number(c.warmup_ms);
+  base["program_cache"] = c.program_cache;
+  for (const auto& [k, v] : c.metrics) base[k] = v;
+  std::vector<std::string> passes;
+  if (c.pass_names.size() > 1) passes = c.pass_names;
+  passes.push_back("total");
+  std::vector<Row> rows;
+  for (const auto& pass : passes) {
+    Row row = base;
+    row["pass"] = pass;
+    std::string reason = c.status == Status::Ok ? c.note : c.reason;
+    auto cpu = c.cpu.find(pass);
+    if (c.status == Status::Ok && cpu != c.cpu.end()) {
+      auto cs = summarize(cpu->second);
+      std::vector<double> g;
+      const auto& gpu = c.gpu.at(pass);
+      for (double x : gpu)
+        if (x >= 0) g.push_back(x);
+      bool have_gpu = !g.empty() && g.size() == gpu.size();
+      auto gs = have_gpu ? summarize(g) : Summary{};
+      bool gpu_primary = s.gpu_primary && have_gpu;
+      const auto& st = gpu_primary ? gs : cs;
+      row["timer"] = gpu_primary ? "gpu" : "cpu";
+      row["median_ms"] = fmt_number(st.median);
+      row["mad_ms"] = fmt_number(st.mad);
+      row["min_ms"] = fmt_number(st.min);
+      row["max_ms"] = fmt_number(st.max);
+      row["mean_ms"] = fmt_number(st.mean);
+      row["stddev_ms"] = fmt_number(st.stddev);
+      row["samples"] = std::to_string(st.n);
+      row["outliers"] = std::to_string(st.outliers);
+      row["cpu_median_ms"] = fmt_number(cs.median);
+      row["cpu_mad_ms"] = fmt_number(cs.mad);
+      if (have_gpu) {
+        row["gpu_median_ms"] = fmt_number(gs.median);
+        row["gpu_mad_ms"] = fmt_number(gs.mad);
+      }
+      if (gpu_primary && gs.median > 0 &&
+          (cs.median / gs.median > kTimerDisagreement || gs.median / cs.median > kTimerDisagreement)) {
+        reason += (reason.empty() ? "" : "; ") + std::string("timer-disagreement: cpu ") + fmt_number(cs.median, 3) +
+                  " ms vs gpu " + fmt_number(gs.median, 3) + " ms";
+      }
+    }
+    row["reason"] = reason;
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+std::vector<Row> raw_rows(const RowSettings& s, const CaseRecord& c, int rep, const std::vector<PassSample>& samples,
+                          double total_ms, double gpu_total_ms) {
+  Row row;
+  for (const auto& col : raw_base_columns())
+    if (auto it = s.run.find(col.name); it != s.run.end()) row[col.name] = it->second;
+  row["experiment"] = s.experiment;
+  row["variant"] = c.variant;
+  row["rep"] = std::to_string(rep);
+  row["timestamp_utc"] = utc_now();
+  for (const auto& [k, v] : c.params.used_values())
+    if (k != "variant") row[k] = v;
+  std::vector<Row> rows;
+  auto put = [&](const std::string& pass, double cpu, double gpu) {
+    row["pass"] = pass;
+    row["cpu_ms"] = fmt_number(cpu);
+    row["gpu_ms"] = gpu >= 0 ? fmt_number(gpu) : "";
+    rows.push_back(row);
+  };
+  if (samples.size() > 1)
+    for (const auto& p : samples) put(p.pass, p.cpu_ms, p.gpu_ms);
+  put("total", total_ms, gpu_total_ms);
+  return rows;
+}
+
+}  // namespace oitbench

@@ -1,0 +1,54 @@
+#pragma once
+// A case's results as CSV rows: the statistics of each pass under the primary clock beside both
+// clocks' medians, the status and reason, the metrics, and the parameters the case uses.
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/registry.hpp"
+#include "core/schema.hpp"
+#include "core/timer.hpp"
+
+namespace oitbench {
+
+using Row = std::map<std::string, std::string>;
+
+std::string fmt_number(double v, int prec = 4);  // empty for NaN and infinities
+
+// What one case produced, kept until its rows are written.
+struct CaseRecord {
+  ParamSet params;
+  std::string variant;
+  Status status = Status::Ok;
+  std::string reason;
+  double compile_ms = std::numeric_limits<double>::quiet_NaN(), warmup_ms = std::numeric_limits<double>::quiet_NaN();
+  std::string program_cache;  // hit | miss | partial | off: whether compile_ms paid the compile
+  std::vector<std::string> pass_names;
+  std::map<std::string, std::vector<double>> cpu, gpu;  // by pass, "total" included; gpu < 0: no result
+  std::map<std::string, std::string> metrics;           // the instance's and the validation's
+  std::string note;                                     // the validation's note on an ok case
+
+  void fail(Status s, const std::string& why);  // the first failure is the one kept
+  // Records one timed repetition; returns the sum of its GPU pass times (< 0 when one is missing).
+  double add_repetition(const std::vector<PassSample>& samples, double total_ms);
+};
+
+struct RowSettings {
+  Row run;            // the run's columns (backend, renderer, git_sha, ...)
+  std::string experiment;
+  Resolution res;
+  int reps = 0, warmup = 0;
+  bool gpu_primary = false;  // GL queries are the primary clock where every repetition has one
+};
+
+// One row per pass (when there are several) and `total`.
+std::vector<Row> summary_rows(const RowSettings& s, const CaseRecord& c);
+// The --raw rows of one repetition: one per pass (when there are several) and `total`.
+std::vector<Row> raw_rows(const RowSettings& s, const CaseRecord& c, int rep, const std::vector<PassSample>& samples,
+                          double total_ms, double gpu_total_ms);
+
+// Where queries are the primary clock, a CPU clock this many times off them means one is wrong.
+inline constexpr double kTimerDisagreement = 2.0;
+
+}  // namespace oitbench

@@ -1,0 +1,207 @@
+#include "core/schema.hpp"
+
+#include <algorithm>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "core/registry.hpp"
+
+namespace oitbench {
+
+const char* status_name(Status s) {
+  switch (s) {
+    case Status::Ok: return "ok";
+    case Status::Invalid: return "invalid";
+    case Status::Unsupported: return "unsupported";
+    case Status::Error: return "error";
+    case Status::Timeout: return "timeout";
+  }
+  return "?";
+}
+
+const char* status_description(Status s) {
+  switch (s) {
+    case Status::Ok: return "ran and matched its reference: the times are valid";
+    case Status::Invalid: return "ran but disagreed with its reference (reason says how): no times";
+    case Status::Unsupported: return "this driver cannot run the case (reason says what is missing): no times";
+    case Status::Error: return "failed to build or run (reason names the file and line or the GL error): no times";
+    case Status::Timeout: return "killed by the watchdog after --timeout seconds: no times";
+  }
+  return "?";
+}
+
+const char* value_type_name(ValueType t) {
+  switch (t) {
+    case ValueType::Text: return "text";
+    case ValueType::Integer: return "integer";
+    case ValueType::Number: return "number";
+    case ValueType::Flag: return "flag";
+  }
+  return "?";
+}
+
+namespace {
+using T = ValueType;
+}  // namespace
+
+const std::vector<ColumnSpec>& summary_base_columns() {
+  static const std::vector<ColumnSpec> cols = {
+      {"schema", T::Integer, "", "version of this column layout (kCsvSchema)"},
+      {"experiment", T::Text, "", "experiment name (oitbench list)"},
+      {"variant", T::Text, "", "the experiment's variant parameter, where it has one"},
+      {"pass", T::Text, "", "the timed pass this row is about; total is the whole repetition"},
+      {"status", T::Text, "", "ok, invalid, unsupported, error or timeout (see statuses)"},
+      {"valid", T::Flag, "", "1 when status is ok, else 0"},
+      {"reason", T::Text, "", "why the case is not ok, or a note on an ok one"},
+      {"backend", T::Text, "", "context backend: egl, egl-device, osmesa, glfw"},
+      {"device", T::Text, "", "the display or EGL device the context ran on"},
+      {"gl_vendor", T::Text, "", "GL_VENDOR"},
+      {"gl_renderer", T::Text, "", "GL_RENDERER"},
+      {"gl_version", T::Text, "", "GL_VERSION"},
+      {"width", T::Integer, "px", "render target width"},
+      {"height", T::Integer, "px", "render target height"},
+      {"reps", T::Integer, "", "timed repetitions asked for"},
+      {"warmup", T::Integer, "", "untimed repetitions before them"},
+      {"median_ms", T::Number, "ms", "median of the primary clock over the repetitions"},
+      {"mad_ms", T::Number, "ms", "median absolute deviation of the primary clock"},
+      {"min_ms", T::Number, "ms", "fastest repetition"},
+      {"max_ms", T::Number, "ms", "slowest repetition"},
+      {"mean_ms", T::Number, "ms", "mean of the repetitions"},
+      {"stddev_ms", T::Number, "ms", "standard deviation of the repetitions"},
+      {"samples", T::Integer, "", "repetitions the statistics are over"},
+      {"outliers", T::Integer, "", "repetitions more than 3 robust sigmas from the median"},
+      {"cpu_median_ms", T::Number, "ms", "median of the CPU clock around glFinish"},
+      {"cpu_mad_ms", T::Number, "ms", "its median absolute deviation"},
+      {"gpu_median_ms", T::Number, "ms", "median of the GL_TIME_ELAPSED queries, where the driver has them"},
+      {"gpu_mad_ms", T::Number, "ms", "its median absolute deviation"},
+      {"timer", T::Text, "", "the primary clock of median_ms: cpu or gpu"},
+      {"compile_ms", T::Number, "ms", "preparing the case: compile, link, allocate, upload"},
+      {"program_cache", T::Text, "", "hit, miss, partial or off: whether compile_ms paid for compiling"},
+      {"warmup_ms", T::Number, "ms", "the first (untimed) repetition, JIT included"},
+      {"preset", T::Text, "", "the preset the row ran under, if any"},
+      {"git_sha", T::Text, "", "the commit the binary was built from (-dirty when its sources differed)"},
+      {"timestamp_utc", T::Text, "", "when the row was written (ISO 8601, UTC)"},
+      {"hostname", T::Text, "", "machine name"},
+      {"cpu_model", T::Text, "", "/proc/cpuinfo model name"},
+      {"lp_num_threads", T::Text, "", "LP_NUM_THREADS (llvmpipe's rasterizer threads), or the core count"},
+      {"env", T::Text, "", "environment variables that change a driver's behaviour, NAME=VALUE;..."},
+      {"parameters", T::Text, "", "the parameter columns this case uses, NAME;NAME;..."},
+  };
+  return cols;
+}
+
+const std::vector<ColumnSpec>& raw_base_columns() {
+  static const std::vector<ColumnSpec> cols = {
+      {"schema", T::Integer, "", "version of this column layout"},
+      {"experiment", T::Text, "", "experiment name"},
+      {"variant", T::Text, "", "the experiment's variant parameter"},
+      {"pass", T::Text, "", "the timed pass; total is the whole repetition"},
+      {"rep", T::Integer, "", "repetition index, 0 = first timed one"},
+      {"cpu_ms", T::Number, "ms", "CPU clock around glFinish"},
+      {"gpu_ms", T::Number, "ms", "GL_TIME_ELAPSED, where the driver has it"},
+      {"backend", T::Text, "", "context backend"},
+      {"gl_renderer", T::Text, "", "GL_RENDERER"},
+      {"git_sha", T::Text, "", "the commit the binary was built from"},
+      {"timestamp_utc", T::Text, "", "when the row was written"},
+      {"preset", T::Text, "", "the preset the row ran under"},
+  };
+  return cols;
+}
+
+namespace {
+
+void append_unique(std::vector<std::string>& v, const std::string& s) {
+  if (std::find(v.begin(), v.end(), s) == v.end()) v.push_back(s);
+}
+
+std::vector<std::string> names_of(const std::vector<ColumnSpec>& cols) {
+  std::vector<std::string> v;
+  for (const auto& c : cols) v.push_back(c.name);
+  return v;
+}
+
+std::vector<std::string> parameter_names(const Registry& registry) {
+  std::vector<std::string> v;
+  for (const auto& e : registry.all())
+    for (const auto& p : registry.params_of(*e))
+      if (p.name != "variant") append_unique(v, p.name);
+  return v;
+}
+
+const char* param_type(ParamSpec::Kind k) {
+  return k == ParamSpec::Kind::Integer ? "integer" : k == ParamSpec::Kind::Number ? "number" : "text";
+}
+
+}  // namespace
+
+std::vector<std::string> summary_columns(const Registry& registry) {
+  auto cols = names_of(summary_base_columns());
+  for (const auto& e : registry.all())
+    for (const auto& m : e->metric_specs()) append_unique(cols, m.name);
+  for (const auto& p : parameter_names(registry)) append_unique(cols, p);
+  return cols;
+}
+
+std::vector<std::string> raw_columns(const Registry& registry) {
+  auto cols = names_of(raw_base_columns());
+  for (const auto& p : parameter_names(registry)) append_unique(cols, p);
+  return cols;
+}
+
+std::string schema_json(const Registry& registry) {
+  using nlohmann::ordered_json;
+  auto column = [](const ColumnSpec& c, const char* role) {
+    ordered_json j;
+    j["name"] = c.name;
+    j["role"] = role;
+    j["type"] = value_type_name(c.type);
+    j["unit"] = c.unit;
+    j["description"] = c.description;
+    return j;
+  };
+  // Metrics and parameters: one entry per name, with the experiments that fill it.
+  std::vector<std::string> order;
+  std::map<std::string, ordered_json> entries;
+  for (const auto& e : registry.all())
+    for (const auto& m : e->metric_specs()) {
+      if (!entries.count(m.name)) {
+        entries[m.name] = column(m, "metric");
+        entries[m.name]["experiments"] = ordered_json::array();
+        order.push_back(m.name);
+      }
+      entries[m.name]["experiments"].push_back(e->name());
+    }
+  std::vector<std::string> params;
+  std::map<std::string, ordered_json> param_entries;
+  for (const auto& e : registry.all())
+    for (const auto& p : registry.params_of(*e)) {
+      if (p.name == "variant") continue;
+      if (!param_entries.count(p.name)) {
+        ordered_json j;
+        j["name"] = p.name;
+        j["role"] = "parameter";
+        j["type"] = param_type(p.kind);
+        j["unit"] = "";
+        j["description"] = p.description;
+        j["experiments"] = ordered_json::array();
+        param_entries[p.name] = j;
+        params.push_back(p.name);
+      }
+      param_entries[p.name]["experiments"].push_back(e->name());
+    }
+  ordered_json out;
+  out["schema"] = kCsvSchema;
+  out["statuses"] = ordered_json::array();
+  for (Status s : kAllStatuses) out["statuses"].push_back({{"name", status_name(s)}, {"meaning", status_description(s)}});
+  auto& summary = out["summary_columns"] = ordered_json::array();
+  for (const auto& c : summary_base_columns()) summary.push_back(column(c, "base"));
+  for (const auto& n : order) summary.push_back(entries[n]);
+  for (const auto& n : params)
+    if (!entries.count(n)) summary.push_back(param_entries[n]);
+  auto& raw = out["raw_columns"] = ordered_json::array();
+  for (const auto& c : raw_base_columns()) raw.push_back(column(c, "base"));
+  for (const auto& n : params) raw.push_back(param_entries[n]);
+  return out.dump(2) + "\n";
+}
+
+}  // namespace oitbench

@@ -1,0 +1,48 @@
+#pragma once
+// The result schema, defined once: the statuses a case can end in, the framework's columns of a
+// summary row and of a --raw row (name, type, unit, meaning), and the JSON that
+// `oitbench list --schema json` prints: those columns plus every registered experiment's metrics
+// and parameters. scripts/oitcsv.py reads a committed copy of that JSON (scripts/schema.json),
+// which a test regenerates and compares, so no column list is typed twice.
+#include <string>
+#include <vector>
+
+namespace oitbench {
+
+class Registry;
+
+// 2: parameters scoped to the cases they apply to (others empty), max_frags_used, sort_source,
+// the output path `dump` no longer a parameter.
+inline constexpr int kCsvSchema = 2;
+
+enum class Status { Ok, Invalid, Unsupported, Error, Timeout };
+inline constexpr Status kAllStatuses[] = {Status::Ok, Status::Invalid, Status::Unsupported, Status::Error,
+                                          Status::Timeout};
+const char* status_name(Status s);         // "ok", "invalid", ...
+const char* status_description(Status s);  // what it means for the row's numbers
+
+enum class ValueType { Text, Integer, Number, Flag };
+const char* value_type_name(ValueType t);  // "text", "integer", "number", "flag"
+
+struct ColumnSpec {
+  std::string name;
+  ValueType type = ValueType::Text;
+  std::string unit;  // "ms", "bytes", "fragments/s", ...; empty: none
+  std::string description;
+};
+using MetricSpec = ColumnSpec;
+
+// The framework's columns of a summary row, in file order; the metrics and parameters follow.
+const std::vector<ColumnSpec>& summary_base_columns();
+// The columns of a --raw row (one per repetition and pass); the parameters follow.
+const std::vector<ColumnSpec>& raw_base_columns();
+
+// The full CSV headers for this registry: base columns, every experiment's metrics, parameters.
+std::vector<std::string> summary_columns(const Registry& registry);
+std::vector<std::string> raw_columns(const Registry& registry);
+
+// `oitbench list --schema json`: schema version, statuses, and both files' columns with their role
+// (base, metric, parameter), type, unit, description and the experiments that fill them.
+std::string schema_json(const Registry& registry);
+
+}  // namespace oitbench
