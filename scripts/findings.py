@@ -300,7 +300,7 @@ IDENTIFYING = ("technique", "scene", "view", "capture", "memory", "layers", "n",
 
 
 def section_not_ok(f):
-    lines = ["## Cases that are not ok, and why", "",
+    lines = ["## Cases that are not ok", "",
              "Every case whose status is not `ok`, grouped where only the numbers in the reason differ. An "
              "`invalid` case ran but its result differs from the CPU reference, so it carries no time; an "
              "`unsupported` one needs what this driver lacks.", ""]
@@ -380,7 +380,8 @@ def section_warmup(f):
 
 def section_occupancy(f):
     name = "occupancy-fig3"
-    lines = ["## Occupancy: local array size against time (Knowles 2013, figure 3)", ""]
+    lines = ["## Occupancy", "",
+             "Knowles 2013 figure 3, local array size against time: the `occupancy` experiment.", ""]
     rows = f.rows(name, "occupancy")
     if not rows:
         return lines + missing(name)
@@ -460,7 +461,8 @@ def paper_ratio_rows(pairs, comparisons):
 
 def section_sort(f):
     name = "bruell2018-sorting"
-    lines = ["## Sorting and inserting per pixel (Brüll 2018 §4.4–4.5, Tables A.1–A.3, figures 4.7/4.8)", ""]
+    lines = ["## Sort and insert", "",
+             "Brüll 2018 §4.3–4.5, Tables A.1–A.3, figures 4.7/4.8: the `sort` and `insert` experiments.", ""]
     if not f.run(name):
         return lines + missing(name)
     sort = f.rows(name, "sort")
@@ -564,98 +566,105 @@ def section_sort(f):
     return lines
 
 
-def section_storage(f):
-    lines = ["## Storage layouts, spinlocks and the stencil-masked resolve (Brüll 2018 ch. 4, Tables 4.1, "
-             "A.4, A.5)", ""]
+def section_layout(f):
+    lines = ["## Storage layouts", "", "Brüll 2018 §4.1, Table 4.1: the `layout` experiment.", ""]
     name = "bruell2018-storage"
     layout = f.rows(name, "layout")
     if not layout:
-        lines += missing(name)
-    else:
-        r0 = layout[0]
-        nodes = sizes_of(layout, "nodes")
-        pairs = f.paper_pairs(name, "bruell-4.1")
-        scenes = sorted({k[2] for k in pairs}, key=["powerplant", "village", "sanmiguel"].index)
-        thesis = {"texture3d": "MLAB texture3d", "interleaved-2x4-a1": "MLAB interleaved-ssbo 2x4",
-                  "interleaved-2x4-a4": "MLAB interleaved-ssbo 2x4"}
+        return lines + missing(name)
+    r0 = layout[0]
+    nodes = sizes_of(layout, "nodes")
+    pairs = f.paper_pairs(name, "bruell-4.1")
+    scenes = sorted({k[2] for k in pairs}, key=["powerplant", "village", "sanmiguel"].index)
+    thesis = {"texture3d": "MLAB texture3d", "interleaved-2x4-a1": "MLAB interleaved-ssbo 2x4",
+              "interleaved-2x4-a4": "MLAB interleaved-ssbo 2x4"}
 
-        def lt(lay, n, src=name):
-            return f.median(src, "layout", layout=lay, nodes=n)
+    def lt(lay, n, src=name):
+        return f.median(src, "layout", layout=lay, nodes=n)
 
-        layouts = [x for x in dict.fromkeys(r["layout"] for r in layout) if x != "ssbo"]
-        body = []
-        for lay in layouts:
-            row = [f"`{lay}`"] + [f_x(ratio(lt(lay, n), lt("ssbo", n))) for n in nodes]
-            for n in nodes:
-                th = []
-                for s in scenes:
-                    a, b = pairs.get((thesis.get(lay, ""), str(n), s, "", "total_time")), \
-                        pairs.get(("MLAB ssbo", str(n), s, "", "total_time"))
-                    th.append(f_x(ratio(a["paper"], b["paper"])) if a and b else DASH)
-                row.append(" / ".join(th))
-            body.append(row)
-        lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['layers']} layers, {r0['reps']} repetitions): time / "
-                  f"`ssbo` of the `total` medians; the thesis's MLAB times ({' / '.join(scenes)}) likewise.", ""]
-        lines += table(["layout"] + [f"nodes {n}" for n in nodes] + [f"thesis, {n} nodes" for n in nodes], body)
-        for lay, label in (("texture3d", "`texture3d` (image load/store)"), ("texbuffer", "The buffer-texture read path")):
-            rs = [ratio(lt(lay, n), lt("ssbo", n)) for n in nodes]
-            if any(rs):
-                lines.append(f"- {label} takes {span(rs)}x the time of `ssbo`: {verdict(rs, 'node counts')}.")
-        inter = [ratio(lt(x, n), lt("ssbo", n)) for x in layouts if x.startswith("interleaved")
-                 and x != "interleaved-1x1-a1" for n in nodes]
-        if any(inter):
-            lines.append(f"- The interleaved layouts take {span(inter)}x the time of `ssbo`: {verdict(inter)}.")
-        ctl = [ratio(lt("interleaved-1x1-a1", n), lt("ssbo", n)) for n in nodes]
-        if any(ctl):
-            lines.append(f"- The control `interleaved-1x1-a1`, byte for byte `ssbo`, takes {span(ctl)}x: the "
-                         "noise of this comparison.")
-        q = [ratio(lt("texture3d", n, "default"), lt("ssbo", n, "default")) for n in sizes_of(
-            f.rows("default", "layout"), "nodes")]
-        if any(q):
-            q0 = f.rows("default", "layout")[0]
-            lines.append(f"- The `default` preset's quick grid ({res(q0)}, {q0['layers']} layers): `texture3d` / "
-                         f"`ssbo` {span(q)}.")
-        every = f.rows(name, "layout", pass_=None) + f.rows("default", "layout", pass_=None)
-        lost = sum(num(r, "lost_updates") or 0 for r in every if r["pass"] == "total")
-        incons = sum(num(r, "inconsistent_nodes") or 0 for r in every if r["pass"] == "total")
-        lines.append(f"- Lost updates over every layout case of both presets: {lost:.0f}; inconsistent nodes: "
-                     f"{incons:.0f}.")
-        lines += ["", "A CPU rasteriser has no memory transactions to coalesce, and llvmpipe shades a tile's "
-                  "fragments in primitive order, so the races that interleaved storage invites on a GPU cannot "
-                  "happen here.", ""]
+    layouts = [x for x in dict.fromkeys(r["layout"] for r in layout) if x != "ssbo"]
+    body = []
+    for lay in layouts:
+        row = [f"`{lay}`"] + [f_x(ratio(lt(lay, n), lt("ssbo", n))) for n in nodes]
+        for n in nodes:
+            th = []
+            for s in scenes:
+                a, b = pairs.get((thesis.get(lay, ""), str(n), s, "", "total_time")), \
+                    pairs.get(("MLAB ssbo", str(n), s, "", "total_time"))
+                th.append(f_x(ratio(a["paper"], b["paper"])) if a and b else DASH)
+            row.append(" / ".join(th))
+        body.append(row)
+    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['layers']} layers, {r0['reps']} repetitions): time / "
+              f"`ssbo` of the `total` medians; the thesis's MLAB times ({' / '.join(scenes)}) likewise.", ""]
+    lines += table(["layout"] + [f"nodes {n}" for n in nodes] + [f"thesis, {n} nodes" for n in nodes], body)
+    for lay, label in (("texture3d", "`texture3d` (image load/store)"), ("texbuffer", "The buffer-texture read path")):
+        rs = [ratio(lt(lay, n), lt("ssbo", n)) for n in nodes]
+        if any(rs):
+            lines.append(f"- {label} takes {span(rs)}x the time of `ssbo`: {verdict(rs, 'node counts')}.")
+    inter = [ratio(lt(x, n), lt("ssbo", n)) for x in layouts if x.startswith("interleaved")
+             and x != "interleaved-1x1-a1" for n in nodes]
+    if any(inter):
+        lines.append(f"- The interleaved layouts take {span(inter)}x the time of `ssbo`: {verdict(inter)}.")
+    ctl = [ratio(lt("interleaved-1x1-a1", n), lt("ssbo", n)) for n in nodes]
+    if any(ctl):
+        lines.append(f"- The control `interleaved-1x1-a1`, byte for byte `ssbo`, takes {span(ctl)}x: the "
+                     "noise of this comparison.")
+    q = [ratio(lt("texture3d", n, "default"), lt("ssbo", n, "default")) for n in sizes_of(
+        f.rows("default", "layout"), "nodes")]
+    if any(q):
+        q0 = f.rows("default", "layout")[0]
+        lines.append(f"- The `default` preset's quick grid ({res(q0)}, {q0['layers']} layers): `texture3d` / "
+                     f"`ssbo` {span(q)}.")
+    every = f.rows(name, "layout", pass_=None) + f.rows("default", "layout", pass_=None)
+    lost = sum(num(r, "lost_updates") or 0 for r in every if r["pass"] == "total")
+    incons = sum(num(r, "inconsistent_nodes") or 0 for r in every if r["pass"] == "total")
+    lines.append(f"- Lost updates over every layout case of both presets: {lost:.0f}; inconsistent nodes: "
+                 f"{incons:.0f}.")
+    lines += ["", "A CPU rasteriser has no memory transactions to coalesce, and llvmpipe shades a tile's "
+              "fragments in primitive order, so the races that interleaved storage invites on a GPU cannot "
+              "happen here.", ""]
+    return lines
+
+
+def section_spinlock(f):
+    lines = ["## Spinlocks", "", "Brüll 2018 §4.2, Listings 4.1–4.3: the `spinlock` experiment.", ""]
     name = "bruell2018-spinlock"
     spin = f.rows(name, "spinlock", valid=False)
     if not spin:
-        lines += missing(name)
-    else:
-        layers = sizes_of(spin, "layers")
-        variants = list(dict.fromkeys(r["variant"] for r in spin))
-        body = []
-        for n in layers:
-            naive = f.median(name, "spinlock", variant="naive", layers=n)
-            row = [n]
-            for v in variants:
-                r = next((x for x in spin if x["variant"] == v and x["layers"] == str(n)), None)
-                if r is not None and oitcsv.is_ok(r):
-                    row.append(f"{f_ms(ms(r))} ({f_x(ratio(ms(r), naive))}x)")
-                else:
-                    row.append(oitcsv.status_of(r) if r else DASH)
-            body.append(row)
-        r0 = spin[0]
-        lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['reps']} repetitions, each case in a child process "
-                  "under the watchdog): `total` ms, and the time over `naive` in brackets.", ""]
-        lines += table(["layers"] + [f"`{v}`" for v in variants], body)
-        ok = [r for r in spin if oitcsv.is_ok(r)]
-        capped = sum(num(r, "capped_updates") or 0 for r in ok)
-        lost = sum(num(r, "lost_updates") or 0 for r in ok)
-        timeouts = sum(1 for r in spin if oitcsv.status_of(r) == "timeout")
-        loops = [ratio(f.median(name, "spinlock", variant=v, layers=n), f.median(name, "spinlock", variant="naive",
-                                                                               layers=n))
-                 for v in ("loop", "helper-guard") for n in layers]
-        lines.append(f"- Capped updates {capped:.0f}, lost updates {lost:.0f}, timeouts {timeouts}. The loop "
-                     f"forms (Listings 4.2/4.3) take {span(loops)}x the naive lock's time: {verdict(loops)}.")
-        lines += ["", "The naive lock does not deadlock on llvmpipe, so passing here says nothing about it on a "
-                  "GPU, where it can hang.", ""]
+        return lines + missing(name)
+    layers = sizes_of(spin, "layers")
+    variants = list(dict.fromkeys(r["variant"] for r in spin))
+    body = []
+    for n in layers:
+        naive = f.median(name, "spinlock", variant="naive", layers=n)
+        row = [n]
+        for v in variants:
+            r = next((x for x in spin if x["variant"] == v and x["layers"] == str(n)), None)
+            if r is not None and oitcsv.is_ok(r):
+                row.append(f"{f_ms(ms(r))} ({f_x(ratio(ms(r), naive))}x)")
+            else:
+                row.append(oitcsv.status_of(r) if r else DASH)
+        body.append(row)
+    r0 = spin[0]
+    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['reps']} repetitions, each case in a child process "
+              "under the watchdog): `total` ms, and the time over `naive` in brackets.", ""]
+    lines += table(["layers"] + [f"`{v}`" for v in variants], body)
+    ok = [r for r in spin if oitcsv.is_ok(r)]
+    capped = sum(num(r, "capped_updates") or 0 for r in ok)
+    lost = sum(num(r, "lost_updates") or 0 for r in ok)
+    timeouts = sum(1 for r in spin if oitcsv.status_of(r) == "timeout")
+    loops = [ratio(f.median(name, "spinlock", variant=v, layers=n), f.median(name, "spinlock", variant="naive",
+                                                                           layers=n))
+             for v in ("loop", "helper-guard") for n in layers]
+    lines.append(f"- Capped updates {capped:.0f}, lost updates {lost:.0f}, timeouts {timeouts}. The loop "
+                 f"forms (Listings 4.2/4.3) take {span(loops)}x the naive lock's time: {verdict(loops)}.")
+    lines += ["", "The naive lock does not deadlock on llvmpipe, so passing here says nothing about it on a "
+              "GPU, where it can hang.", ""]
+    return lines
+
+
+def section_stencil(f):
+    lines = ["## Stencil-masked resolve", "", "Brüll 2018 §4.6, Tables A.4/A.5: the `stencil` experiment.", ""]
     name = "bruell2018-stencil"
     st = f.rows(name, "stencil", pass_=None)
     if not st:
@@ -708,7 +717,8 @@ def pairs_by_capture(f, name):
 
 
 def section_capture(f):
-    lines = ["## Exact OIT: linked lists (PPLL) against packed per-pixel arrays (PPPA)", ""]
+    lines = ["## Exact OIT: capture storage", "",
+             "Linked lists (PPLL) against packed per-pixel arrays (PPPA), Knowles 2014 §2.2.", ""]
     if not f.run("capture-storage"):
         return lines + missing("capture-storage")
     body, stats = [], []
@@ -759,8 +769,9 @@ def section_capture(f):
 
 
 def section_targets(f):
-    lines = [f"## Two targets of the project brief: a shader resolve within {f_paper(TARGET_RESOLVE_VS_CPU)}x of "
-             f"CPU-NATIVE, capture at {tables.fmt(TARGET_CAPTURE_RATE / 1e6, 3)} M fragments/s", ""]
+    lines = ["## Exact OIT: targets", "",
+             f"Two targets of the project brief: a shader resolve within {f_paper(TARGET_RESOLVE_VS_CPU)}x of "
+             f"CPU-NATIVE's, and capture at {tables.fmt(TARGET_CAPTURE_RATE / 1e6, 3)} M fragments/s.", ""]
     body = []
     for name in ("capture-storage", "knowles2014"):
         pairs = pairs_by_capture(f, name)
@@ -831,7 +842,8 @@ def paper_speedup(pairs, technique, scene, view, metric):
 
 def section_knowles2014(f):
     name = "knowles2014"
-    lines = ["## Exact OIT resolves: Knowles 2014 (RBS) tables 1 and 3", ""]
+    lines = ["## Exact OIT: Knowles 2014", "",
+             "The resolve sorts of Knowles 2014 (RBS), tables 1 and 3.", ""]
     if not f.run(name):
         return lines + missing(name)
     pairs = f.paper_pairs(name, "knowles2014-3")
@@ -960,7 +972,8 @@ def section_knowles2014(f):
 
 def section_knowles2013(f):
     name = "knowles2013"
-    lines = ["## BMA against the baseline: Knowles 2013 table 2", ""]
+    lines = ["## Exact OIT: Knowles 2013", "",
+             "BMA against the baseline, Knowles 2013 table 2.", ""]
     if not f.run(name):
         return lines + missing(name)
     pairs = f.paper_pairs(name, "knowles2013-2")
@@ -1043,7 +1056,8 @@ def approx_label(r):
 
 def section_approx(f):
     name = "bruell2018-approx"
-    lines = ["## Approximate OIT: what accuracy costs in time (Brüll 2018 ch. 5–6, Tables 5.1, 6.1–6.3)", ""]
+    lines = ["## Approximate OIT", "",
+             "What accuracy costs in time: Brüll 2018 chapters 5–6, Tables 5.1, 6.1–6.3.", ""]
     rows = f.rows(name, "oit")
     if not rows:
         return lines + missing(name)
@@ -1143,7 +1157,8 @@ def section_approx(f):
 
 def section_error_vs_time(f):
     name = "error-vs-time"
-    lines = ["## Error against time on every scene", ""]
+    lines = ["## Error against time", "",
+             "Every technique on every shipped scene.", ""]
     rows = f.rows(name, "oit")
     if not rows:
         return lines + missing(name)
@@ -1199,7 +1214,8 @@ def section_error_vs_time(f):
 
 def section_lines(f):
     name = "sintorn-lines"
-    lines = ["## Hair as line primitives (Sintorn et al. poster)", ""]
+    lines = ["## Lines", "",
+             "Hair as line primitives, the Sintorn et al. poster: the `lines` experiment.", ""]
     if not f.run(name):
         return lines + missing(name)
     poster = {int(float(r["size"])): r["paper"] for r in f.paper_pairs(name, "sintorn-poster").values()
@@ -1242,7 +1258,7 @@ def section_lines(f):
 
 
 def section_scenes(f):
-    lines = ["## The scenes", "",
+    lines = ["## Scenes", "",
              "Statistics of the shipped scenes as captured (`polygons`, `total_fragments`, `peak_depth`, "
              "`mean_depth`, and the MAX_FRAGS the case used), from the first valid exact case of each scene, "
              "detail, view and resolution in these presets.", ""]
@@ -1264,7 +1280,8 @@ def section_scenes(f):
     return lines
 
 
-SECTIONS = [section_runs, section_not_ok, section_occupancy, section_sort, section_storage, section_knowles2014,
+SECTIONS = [section_runs, section_not_ok, section_occupancy, section_sort, section_layout, section_spinlock,
+            section_stencil, section_knowles2014,
             section_knowles2013, section_capture, section_targets, section_scale, section_approx,
             section_error_vs_time, section_lines, section_scenes, section_warmup]
 
