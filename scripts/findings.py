@@ -419,7 +419,7 @@ def section_occupancy(f):
                          f"{f_x(dynamic[s1] / dynamic[s0])}x.")
         around = [dynamic[s] for s in (63, 64, 65) if s in dynamic]
         if len(around) == 3:
-            lines.append(f"- `dynamic` at SIZE 63, 64 and 65: {', '.join(f_ms(x) for x in around)} ms, within "
+            lines.append(f"- `dynamic` at SIZE 63, 64 and 65: {', '.join(f_ms(x) for x in around)} ms per draw, within "
                          f"{(max(around) / min(around) - 1) * 100:.0f}% of each other.")
         both = [per[("unrolled", s)] / dynamic[s] for s in dynamic if s >= s1 and ("unrolled", s) in per]
         if both:
@@ -475,7 +475,8 @@ def section_sort(f):
                    for v in ("direct", "switch", "if-else")]
     body = paper_ratio_rows(f.paper_pairs(name, "bruell-A.1"), comparisons)
     body += paper_ratio_rows(f.paper_pairs(name, "bruell-A.3"), [
-        ("A.3: bubble with early out / without (ours: both memories' median)", "sort-bench", "bubble sort, early out", "bubble sort, no early out",
+        ("A.3: bubble with early out / without (ours: both memories' median)", "sort-bench",
+         "bubble sort, early out", "bubble sort, no early out",
          "total_time")])
     body += paper_ratio_rows(f.paper_pairs(name, "bruell-A.2"), [
         ("A.2: insertion with early out / without (Village x128; ours: random keys)", "village",
@@ -697,8 +698,9 @@ def section_stencil(f):
     th_u = [ratio(a5[k]["paper"], a5[("UMLAB no stencil",) + k[1:]]["paper"]) for k in a5
             if k[0] == "UMLAB stencil" and ("UMLAB no stencil",) + k[1:] in a5]
     if th_full:
-        lines.append(f"- The thesis (Village, full screen): MLAB's full-screen pass with the mask takes "
-                     f"{span(th_full)}x its time without, its total {span(th_tot)}x; UMLAB's total {span(th_u)}x.")
+        lines.append(f"- The thesis (Village, every node count of Tables A.4/A.5): MLAB's full-screen pass with "
+                     f"the mask takes {span(th_full)}x its time without, its total {span(th_tot)}x; UMLAB's total "
+                     f"{span(th_u)}x.")
     lines.append(f"- Here the stencil writes change the capture pass by {span([c for c in capture if c], f_pct)} "
                  f"(with them: {verdict(capture)}); the `clear` pass, the same with and without the mask, is "
                  f"{span(clear)} of the unmasked total, which bounds what the total can gain.")
@@ -990,7 +992,8 @@ def section_knowles2013(f):
         a = ratio(base, g.get(("BMA-AUTO", "total")))
         auto.append(a)
         body.append([key[0], key[1], key[2], key[3], f_ms(base), f_ms(bma), f_x(ratio(base, bma)),
-                     f"{f_paper(p)} ({pscene})" if p is not None else DASH, f_x(a), f_ms(g.get(("BASE-IS", "resolve")))])
+                     f"{f_paper(p)} ({pscene})" if p is not None else DASH, f_x(a),
+                     f_ms(g.get(("BASE-IS", "resolve")))])
     r0 = f.rows(name, "oit")[0]
     lines += [f"`presets/{name}.csv` ({r0['reps']} repetitions): `total` ms and the speedup over BASE-IS "
               "(the paper's OIT); the paper's BMA-OIT speedup on its GPU (GTX 670, 1680x1050) for the scene "
@@ -1298,9 +1301,9 @@ def render(results_dir, paper_dir, shown_dir):
              "(`tests/scripts/test_findings.py` fails while this file is stale).", "",
              "Every number is read or computed from those files: medians of the primary clock (`median_ms`) of "
              "valid rows only. Ratios are time ratios, A / B: below 1, A is faster. *Faster* and *slower* are "
-             f"computed; *about even* means within {(EVEN_BAND - 1) * 100:.0f}% either way. The same configuration moves "
-             "by tens of percent between runs on this shared machine, so read ratios and shapes, not single "
-             "milliseconds. How it measures: [docs/measurement.md](../../docs/measurement.md); what each "
+             f"computed; *about even* means within {(EVEN_BAND - 1) * 100:.0f}% either way. The same configuration "
+             "moves by tens of percent between runs on this shared machine, so read ratios and shapes, not "
+             "single milliseconds. How it measures: [docs/measurement.md](../../docs/measurement.md); what each "
              "experiment does: [docs/experiments/](../../docs/experiments/).", ""]
     toc = []
     body = []
