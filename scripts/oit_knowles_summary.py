@@ -3,7 +3,8 @@
 and averaged like Knowles 2014 table 1, beside the paper's tables 1 and 3 (CS-* beside CUDA-*).
 
 usage: scripts/oit_knowles_summary.py RESULTS.csv [PAPER_TABLES_DIR]  (markdown on stdout)
-PAPER_TABLES_DIR holds knowles2014_table1_summary.csv and knowles2014_table3_speedups.csv.
+PAPER_TABLES_DIR holds knowles2014_table1_summary.csv and knowles2014_table3_speedups.csv (default: the
+repository's results/published).
 """
 import csv
 import statistics
@@ -23,7 +24,7 @@ def paper_name(t):
 
 def main():
     rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["status"] == "ok"]
-    paper_dir = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(__file__).resolve().parent.parent / "results" / "paper"
+    paper_dir = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(__file__).resolve().parent.parent / "results" / "published"
     t3, t1 = {}, {}
     if (paper_dir / "knowles2014_table3_speedups.csv").exists():
         for r in csv.DictReader(open(paper_dir / "knowles2014_table3_speedups.csv")):

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Regenerates the reference results on the embedded default (EGL surfaceless; Mesa llvmpipe where there
 # is no GPU) in results/llvmpipe/: every preset in presets/*.json (presets/NAME.csv and NAME_raw.csv),
-# `oitbench info` (info.txt), a few rendered images (images/) and the report page (report/index.html).
+# `oitbench info` (info.txt), a few rendered images (images/), the report page (report/index.html) and
+# FINDINGS.md (scripts/findings.py: every measured number, generated from the CSVs).
 #
-#   scripts/reference_runs.sh                      build, every preset, info, images, report
-#   scripts/reference_runs.sh --only P1,P2         build, those presets, info, report ("images" renders them)
-#   scripts/reference_runs.sh --report-only        the report from the CSVs already there
+#   scripts/reference_runs.sh                      build, every preset, info, images, report, findings
+#   scripts/reference_runs.sh --only P1,P2         build, those presets, info, report, findings ("images" renders them)
+#   scripts/reference_runs.sh --report-only        the report and the findings from the CSVs already there
 #
 # OITBENCH=path/to/oitbench runs that binary instead of building build/oitbench; it reads presets,
 # shaders and scenes from its own source tree unless OITBENCH_PRESETS / OITBENCH_SHADERS / OITBENCH_SCENES
@@ -74,6 +75,10 @@ write_report() {
   "$PYTHON" scripts/report.py "$OUT" -o "$OUT/report"
   local rc=$?
   [ $rc -eq 0 ] || failed+=("report (exit $rc)")
+  say "findings: $PYTHON scripts/findings.py $OUT -o $OUT/FINDINGS.md"
+  "$PYTHON" scripts/findings.py "$OUT" -o "$OUT/FINDINGS.md"
+  rc=$?
+  [ $rc -eq 0 ] || failed+=("findings (exit $rc)")
 }
 
 finish() {

@@ -686,7 +686,7 @@ def main(argv=None):
                     help="summary CSVs (`oitbench run --out`) or folders to search for them")
     ap.add_argument("-o", "--out-dir", required=True, help="the report's folder (index.html, figures/, images/)")
     ap.add_argument("--paper", help="folder of the papers' tidy CSVs (default: tables.py's, "
-                                    "../shared/paper-tables beside the repository)")
+                                    "the repository's results/published)")
     ap.add_argument("--images", help="folder of `oitbench render` PNGs (default: images/ in the results folder, "
                                      "or beside the first CSV, when there is one)")
     ap.add_argument("--title", help="the page's title (default: oitbench report: FOLDER)")

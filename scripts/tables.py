@@ -4,7 +4,8 @@
     scripts/tables.py RUN.csv [RUN2.csv ...] [--paper DIR] [--format markdown|csv] [--table NAME]
 
 DIR holds the tidy paper tables (source,table,gpu,resolution,scene,view,technique,size,metric,unit,value);
-by default ../shared/paper-tables beside the repository. Every table prints the paper's numbers with ours
+by default the repository's results/published (its README.md names each file's source), found from this
+script's own path, so any working directory will do. Every table prints the paper's numbers with ours
 beside them: absolute milliseconds, and speedups over the table's baseline technique (BASE-IS for
 Knowles) computed the same way for both, so the shapes compare across hardware. A paper row we have no
 measurement for shows "—".
@@ -488,8 +489,9 @@ CSV_COLUMNS = ["table", "scene", "view", "size", "technique", "metric", "paper",
 
 
 def default_paper_dir():
+    """results/published in the repository this script lives in, whatever the working directory."""
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    return os.path.normpath(os.path.join(repo, "..", "shared", "paper-tables"))
+    return os.path.join(repo, "results", "published")
 
 
 def select_tables(name):
@@ -508,7 +510,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("csv", nargs="*", help="summary CSVs written by `oitbench run --out`")
     ap.add_argument("--paper", default=default_paper_dir(),
-                    help="folder of the papers' tidy CSVs (default: ../shared/paper-tables beside the repo)")
+                    help="folder of the papers' tidy CSVs (default: the repository's results/published)")
     ap.add_argument("--format", choices=("markdown", "csv"), default="markdown")
     ap.add_argument("--table", help="one table (e.g. bruell-A.1, knowles2014-2; a unique part of the name works)")
     ap.add_argument("--list", action="store_true", help="list the tables and the technique mapping")

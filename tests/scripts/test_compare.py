@@ -22,7 +22,7 @@ def summary(proc):
 
 def rerun(rows, rng, machine=1.0, drift=0.1, slow=None):
     """The same cases measured again: the whole machine `machine` times slower and each case drifting
-    by a log-normal `drift`, together the 20-30% that identical runs move on this VM (PLATFORM.md);
+    by a log-normal `drift`, together the 20-30% that identical runs move on this VM (docs/measurement.md);
     variants in `slow` are really slowed by their factor."""
     out = []
     for r in rows:

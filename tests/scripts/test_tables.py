@@ -3,10 +3,11 @@ technique mapping, the csv format, and errors that name what is wrong."""
 import csv
 import io
 import os
+import subprocess
 import unittest
 
 import synthetic as syn
-from support import TempDirTest, run_script
+from support import PYTHON, TempDirTest, run_script
 
 PAPER_HEADER = "source,table,gpu,resolution,scene,view,technique,size,metric,unit,value\n"
 MINI_PAPER = PAPER_HEADER + "".join(
@@ -19,11 +20,8 @@ MINI_PAPER = PAPER_HEADER + "".join(
                     ("BMA-RBS-L", "resolve_time", 49), ("CUDA-IS", "total_time", 50)))
 
 
-def shared_paper_dir():
-    """The project's real paper tables, where the checkout has them beside it."""
-    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    path = os.path.normpath(os.path.join(repo, "..", "shared", "paper-tables"))
-    return path if os.path.isfile(os.path.join(path, "bruell2018_appendix_micro.csv")) else None
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+PUBLISHED = os.path.join(REPO, "results", "published")
 
 
 class TablesMini(TempDirTest):
@@ -154,10 +152,12 @@ class TablesMini(TempDirTest):
         self.assertIn("-> oit:", proc.stdout)
 
 
-@unittest.skipUnless(shared_paper_dir(), "the shared paper tables are not beside this checkout")
-class TablesShared(TempDirTest):
+class TablesPublished(TempDirTest):
     def test_every_table_prints_the_published_numbers(self):
-        proc = run_script("tables.py")  # the default --paper
+        # The default --paper is the repository's results/published, from any working directory.
+        proc = subprocess.run([PYTHON, os.path.join(REPO, "scripts", "tables.py")], cwd=self.dir,
+                              capture_output=True, text=True, timeout=300)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
         for needle in ("0.0584 ms",  # Brüll A.1, direct, 4
                        "145.4 ms",  # A.2 powerplant x16 no early out, 32
                        "1.109 ms",  # A.3 bubble no early out, 32
@@ -173,20 +173,20 @@ class TablesShared(TempDirTest):
                      "Knowles 2013 table 1", "Knowles 2013 table 2"):
             self.assertIn(name, proc.stdout)
 
-
-if __name__ == "__main__":
-    unittest.main()
+    def test_every_published_file_is_described(self):
+        with open(os.path.join(PUBLISHED, "README.md"), encoding="utf-8") as f:
+            readme = f.read()
+        for name in sorted(os.listdir(PUBLISHED)):
+            if name.endswith(".csv"):
+                self.assertIn(f"`{name}`", readme, f"results/published/README.md does not describe {name}")
 
 
 class TablesFromReferenceRuns(unittest.TestCase):
     """The approximate-OIT and line-primitive tables on the committed llvmpipe runs."""
 
     def setUp(self):
-        self.paper = shared_paper_dir()
-        if self.paper is None:
-            self.skipTest("../shared/paper-tables is not beside this checkout")
-        repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-        self.results = os.path.join(repo, "results", "llvmpipe")
+        self.paper = PUBLISHED
+        self.results = os.path.join(REPO, "results", "llvmpipe")
 
     def test_bruell_approx_tables_set_ours_beside_the_thesis(self):
         out = run_script("tables.py", os.path.join(self.results, "presets", "bruell2018-approx.csv"), "--paper", self.paper,
@@ -199,3 +199,7 @@ class TablesFromReferenceRuns(unittest.TestCase):
                          "--table", "sintorn").stdout
         self.assertRegex(out, r"\| dog \| 1800000 \| 25 \| [0-9.]+ \| [0-9.]+ \|")
         self.assertIn("| woman2 | 320000 | 50 | — | — |", out)
+
+
+if __name__ == "__main__":
+    unittest.main()
