@@ -74,7 +74,7 @@ def main():
     for scene, view in views:
         r = res.get((scene, view, "BASE-IS", "total"))
         if r:
-            print(f"| {scene} | {view} | {r['total_fragments']} | {r['peak_depth']} | {r['max_frags']} "
+            print(f"| {scene} | {view} | {r['total_fragments']} | {r['peak_depth']} | {r.get('max_frags_used') or r['max_frags']} "
                   f"| {float(r['fragments_per_s']) / 1e6:.1f} M | {r.get('node_pool_bytes', '')} |")
 
 

@@ -298,19 +298,27 @@ class Ours:
                 (c for c in SIZE_COLUMNS if c in params and r.get(c)), None)
             scene_col = next((c for c in SCENE_COLUMNS if c in params and r.get(c)), None)
             view_col = next((c for c in VIEW_COLUMNS if c in params and r.get(c)), None)
-            key = (r.get(size_col, "") if size_col else "", r.get(scene_col, "") if scene_col else "",
+            key = (size_value(r, size_col) if size_col else "", r.get(scene_col, "") if scene_col else "",
                    r.get(view_col, "") if view_col else "", r["width"], r["height"])
             groups.setdefault(key, None)
         return list(groups)
 
 
+def size_value(row, column):
+    """A row's size in `column`. For max_frags, the MAX_FRAGS the resolve ran with: schema 2 records it
+    in the metric max_frags_used (the parameter may be 0, auto); schema 1 wrote it over the parameter."""
+    if column == "max_frags" and row.get("max_frags_used", "") != "":
+        return row["max_frags_used"]
+    return row.get(column, "")
+
+
 def size_matches(row, params, size, column=None):
     want = oitcsv.to_float(size)
     if column:
-        return column in params and oitcsv.to_float(row.get(column, "")) == want
+        return column in params and oitcsv.to_float(size_value(row, column)) == want
     for c in SIZE_COLUMNS:
         if c in params and row.get(c, "") != "":
-            return oitcsv.to_float(row[c]) == want
+            return oitcsv.to_float(size_value(row, c)) == want
     return False
 
 

@@ -29,6 +29,10 @@ struct ColumnSpec {
   ValueType type = ValueType::Text;
   std::string unit;  // "ms", "bytes", "fragments/s", ...; empty: none
   std::string description;
+  // Framework columns only: what the column is about. "run" (the driver, machine, code and
+  // environment: never part of a case's identity when runs are compared), "case" (what ran),
+  // "result" (its status) or "timing".
+  std::string group = "";
 };
 using MetricSpec = ColumnSpec;
 

@@ -17,7 +17,7 @@
 
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
-#include "oit/approx.hpp"
+#include "oit/image_compare.hpp"
 #include "oit/fragment_lists.hpp"
 #include "oit/metrics.hpp"
 #include "oit/reference.hpp"

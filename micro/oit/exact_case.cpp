@@ -23,6 +23,8 @@
 #include "oit/fragment_storage.hpp"
 #include "oit/packed_arrays.hpp"
 #include "oit/gpu_mesh.hpp"
+#include "oit/image_compare.hpp"
+#include "oit/image_io.hpp"
 #include "oit/reference.hpp"
 #include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
@@ -289,19 +291,16 @@ class ExactCase final : public OitCase {
   }
 
  private:
-  // `oitbench render` / dump=PATH: PATH.png and PATH.pfm (the resolve, 8-bit and float), PATH-diff8.png (|image - reference| x 8),
+  // `oitbench render --out PATH.png`: PATH.png and PATH.pfm (the resolve, 8-bit and float), PATH-diff8.png (|image - reference| x 8),
   // PATH-depth.png (depth complexity in false colour, black = empty, log scale up to the peak) and
   // PATH-depth-histogram.csv (pixels per depth complexity).
   void write_images(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats) const {
     const size_t pixels = stats.depth.size();
-    std::vector<float> rgb(pixels * 3), diff(pixels * 3), depth(pixels * 3);
+    std::vector<float> rgb(pixels * 3), depth(pixels * 3);
     std::vector<size_t> histogram(stats.peak_depth + 1, 0);
     const double peak = std::log2(1.0 + std::max(1u, stats.peak_depth));
     for (size_t p = 0; p < pixels; ++p) {
-      for (int k = 0; k < 3; ++k) {
-        rgb[p * 3 + k] = rgba[p * 4 + 3] == 0.0f ? scene_.background[k] : rgba[p * 4 + k];
-        diff[p * 3 + k] = static_cast<float>(std::abs(rgb[p * 3 + k] - ref[p * 3 + k]));
-      }
+      for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = rgba[p * 4 + 3] == 0.0f ? scene_.background[k] : rgba[p * 4 + k];
       ++histogram[stats.depth[p]];
       // blue (1 fragment) -> green -> red (peak), on a log scale; black where nothing landed
       float t = stats.depth[p] ? static_cast<float>(std::log2(1.0 + stats.depth[p]) / peak) : 0.0f;
@@ -310,13 +309,8 @@ class ExactCase final : public OitCase {
                                         : glm::mix(glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), t * 2 - 1);
       for (int k = 0; k < 3; ++k) depth[p * 3 + k] = c[k];
     }
-    write_png(dump_ + ".png", rgb, width_, height_);
-    write_png(dump_ + "-diff8.png", diff, width_, height_, 8.0f);
+    write_result_images(dump_, rgb, ref, width_, height_);
     write_png(dump_ + "-depth.png", depth, width_, height_);
-    // PATH.pfm: the resolve in float (Portable Float Map: rows bottom to top, like GL; -1 = little endian).
-    std::ofstream pfm(dump_ + ".pfm", std::ios::binary);
-    pfm << "PF\n" << width_ << " " << height_ << "\n-1.0\n";
-    pfm.write(reinterpret_cast<const char*>(rgb.data()), static_cast<std::streamsize>(rgb.size() * sizeof(float)));
     std::ofstream csv(dump_ + "-depth-histogram.csv");
     csv << "depth_complexity,pixels\n";
     for (size_t d = 0; d < histogram.size(); ++d)

@@ -115,36 +115,5 @@ void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool 
   for (auto& th : pool) th.join();
 }
 
-ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats,
-                                  glm::vec3 background, int width, double tolerance) {
-  ImageError e;
-  double sum_sq = 0;
-  size_t pixels = ref.size() / 3;
-  for (size_t p = 0; p < pixels; ++p) {
-    const float* g = &rgba[p * 4];
-    bool covered = stats.depth[p] > 0;
-    if (g[3] != (covered ? 1.0f : 0.0f)) ++e.visit_errors;
-    // Equal depths are compared too: every resolve breaks depth ties by colour bits, like the reference.
-    glm::dvec3 got = g[3] == 0.0f ? glm::dvec3(background) : glm::dvec3(g[0], g[1], g[2]);
-    double worst = 0;
-    for (int k = 0; k < 3; ++k) {
-      double d = std::abs(got[k] - ref[p * 3 + k]);
-      if (std::isnan(d)) d = std::numeric_limits<double>::infinity();  // std::max would drop a NaN
-      worst = std::max(worst, d);
-      sum_sq += d * d;
-    }
-    e.max_abs_error = std::max(e.max_abs_error, worst);
-    if (worst > tolerance) {
-      if (e.bad_pixels++ == 0) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "pixel (%zu,%zu): got (%.4f,%.4f,%.4f) resolved %gx, reference (%.4f,%.4f,%.4f)",
-                      p % width, p / width, got[0], got[1], got[2], g[3], ref[p * 3], ref[p * 3 + 1], ref[p * 3 + 2]);
-        e.first_bad = buf;
-      }
-    }
-  }
-  e.rmse = pixels ? std::sqrt(sum_sq / (pixels * 3.0)) : 0.0;
-  return e;
-}
 
 }  // namespace oitbench::oit

@@ -1,8 +1,8 @@
 #pragma once
 // The CPU side of exact OIT: statistics of captured lists, the reference compositor (double
 // precision, the read-back fragments sorted near-to-far with a deterministic tie-break and
-// composited front to back with "over"), the CPU-NATIVE resolve (native threads), and the image
-// comparison every resolve is validated with.
+// composited front to back with "over") and the CPU-NATIVE resolve (native threads); the image
+// comparison every resolve is validated with is in image_compare.hpp.
 #include <string>
 #include <vector>
 
@@ -31,15 +31,5 @@ std::vector<double> composite_reference(const HostLists& lists, glm::vec3 backgr
 // CPU-NATIVE: the same resolve on `threads` native threads (0: all cores); sorts far-to-near and
 // blends back to front in float, like the shaders. `perturb` changes the diagonal x == y (fault=wrong-result).
 void resolve_native(const HostLists& lists, glm::vec3 background, int threads, bool perturb, std::vector<float>& out);
-
-struct ImageError {
-  double max_abs_error = 0, rmse = 0;
-  size_t bad_pixels = 0;         // above the tolerance
-  size_t visit_errors = 0;       // covered pixels not resolved exactly once, or uncovered ones resolved
-  std::string first_bad;         // "pixel (x,y): got (r,g,b), reference (r,g,b)"
-};
-// Compares a resolve's RGBA output (see above) with the reference; `tolerance` per channel.
-ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& reference,
-                                  const ListStats& stats, glm::vec3 background, int width, double tolerance);
 
 }  // namespace oitbench::oit

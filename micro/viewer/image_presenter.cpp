@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "gl/gl.hpp"
-#include "oit/approx.hpp"
+#include "oit/image_io.hpp"
 
 namespace oitbench::viewer {
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "oit/approx.hpp"
+#include "oit/image_compare.hpp"
 #include "oit/reference.hpp"
 #include "support/test_support.hpp"
 

@@ -25,7 +25,7 @@ TEST_F(Oit, CaptureLosesNoFragmentAndOverflowRerenders) {
   // Steady state: the pool stays within 1.25x of the fragments captured.
   EXPECT_LE(std::stod(v.metrics.at("node_pool")), 1.25 * 24 * 64 * 64);
   EXPECT_EQ(v.metrics.at("peak_depth"), "24");
-  EXPECT_EQ(v.metrics.at("max_frags"), "32");
+  EXPECT_EQ(v.metrics.at("max_frags_used"), "32");
 }
 
 TEST_F(Oit, AnOversizedPoolShrinksBeforeTheNextFrameNotAfterIt) {

@@ -102,7 +102,7 @@ TEST_F(PackedArrays, BothLayoutsCaptureTheSameFragments) {
     auto a = run_case("oit", small(scene, view, "BASE-IMS", "PPLL"));
     auto b = run_case("oit", small(scene, view, "BASE-IMS", "PPPA"));
     ASSERT_TRUE(a.valid && b.valid) << a.reason << " / " << b.reason;
-    for (const char* m : {"total_fragments", "peak_depth", "mean_depth", "max_frags"})
+    for (const char* m : {"total_fragments", "peak_depth", "mean_depth", "max_frags_used"})
       EXPECT_EQ(a.metrics.at(m), b.metrics.at(m)) << scene << " " << m;
   }
 }

@@ -4,6 +4,7 @@
 
 #include <bit>
 
+#include "oit/image_compare.hpp"
 #include "oit/reference.hpp"
 
 namespace oitbench::oit {

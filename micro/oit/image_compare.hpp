@@ -1,0 +1,30 @@
+#pragma once
+// Comparing an image with the exact reference composite, for every OIT case: the exact resolves'
+// validation (ImageError: tolerance, resolve counts) and the error statistics every approximate
+// technique and the lines experiment report as data (ApproxError).
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "oit/reference.hpp"
+
+namespace oitbench::oit {
+
+struct ImageError {
+  double max_abs_error = 0, rmse = 0;
+  size_t bad_pixels = 0;         // above the tolerance
+  size_t visit_errors = 0;       // covered pixels not resolved exactly once, or uncovered ones resolved
+  std::string first_bad;         // "pixel (x,y): got (r,g,b), reference (r,g,b)"
+};
+// Compares a resolve's RGBA output (see above) with the reference; `tolerance` per channel.
+ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& reference,
+                                  const ListStats& stats, glm::vec3 background, int width, double tolerance);
+
+// Image statistics against the exact reference (double RGB per pixel).
+struct ApproxError {
+  double rmse = 0, psnr = 0, max_abs_error = 0, frac_pixels_off = 0;  // off: by more than 1/255
+};
+ApproxError approx_error(const std::vector<float>& rgb, const std::vector<double>& reference);
+
+}  // namespace oitbench::oit
