@@ -3,7 +3,7 @@
 # otherwise it prints the exact apt-get line and stops.
 set -euo pipefail
 PACKAGES=(
-  g++ cmake ninja-build pkg-config git
+  g++ cmake ninja-build pkg-config git clang-format
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri   # EGL + Mesa (llvmpipe)
   libosmesa6-dev                                      # optional OSMesa backend
   libglfw3-dev xvfb xauth                             # GLFW window backend, tested under xvfb-run

@@ -189,6 +189,7 @@ std::string schema_json(const Registry& registry) {
         params.push_back(p.name);
       }
       param_entries[p.name]["experiments"].push_back(e->name());
+      if (!p.applies_when.empty()) param_entries[p.name]["applies_where"][e->name()] = p.scope_text();
     }
   ordered_json out;
   out["schema"] = kCsvSchema;

@@ -7,9 +7,10 @@ import csv
 import difflib
 import json
 import os
+import subprocess
 import unittest
 
-from support import TempDirTest, oitbench_exe, run_oitbench
+from support import PYTHON, TempDirTest, oitbench_exe, run_oitbench
 from synthetic import SCRIPTS
 
 import oitcsv
@@ -76,6 +77,20 @@ class CommittedSchemaIsTheBinarys(TempDirTest):
         for r in rows:
             self.assertIn(r["status"], oitcsv.STATUSES)
             self.assertEqual(r["schema"], str(oitcsv.SCHEMA_VERSION))
+
+
+class SchemaPageIsGenerated(TempDirTest):
+    def test_committed_page_equals_the_generated_one(self):
+        out = os.path.join(self.dir, "csv-schema.md")
+        proc = subprocess.run([PYTHON, os.path.join(SCRIPTS, "schema_doc.py"), "-o", out], capture_output=True, text=True)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        with open(out, encoding="utf-8") as f:
+            generated = f.read()
+        with open(os.path.join(SCRIPTS, "..", "docs", "csv-schema.md"), encoding="utf-8") as f:
+            committed = f.read()
+        self.assertEqual(committed, generated, "docs/csv-schema.md is stale: /usr/bin/python3 scripts/schema_doc.py")
+        for c in oitcsv.SCHEMA["summary_columns"]:
+            self.assertIn(f"`{c['name']}`", generated)
 
 
 class ScriptsTypeNoColumnList(unittest.TestCase):
