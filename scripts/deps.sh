@@ -5,6 +5,7 @@ set -euo pipefail
 PACKAGES=(
   g++ cmake ninja-build pkg-config git clang-format
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri   # EGL + Mesa (llvmpipe)
+  mesa-vulkan-drivers                                 # lavapipe: the second driver, zink over lavapipe
   libosmesa6-dev                                      # optional OSMesa backend
   libglfw3-dev xvfb xauth                             # GLFW window backend, tested under xvfb-run
   python3-glad                                        # glad2: the GL loader is generated at build time

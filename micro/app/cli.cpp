@@ -7,6 +7,7 @@
 
 #include "experiments/experiments.hpp"
 #include "app/commands.hpp"
+#include "backends/drivers.hpp"
 #include "core/csv.hpp"
 #include "core/presets.hpp"
 #include "core/runner.hpp"
@@ -55,14 +56,22 @@ int run_cli(int argc, char** argv) {
                    "Print the CSV schema (columns with role, type, unit and meaning; statuses) as FORMAT: json");
 
   ContextOptions copt;
+  std::string driver = "default";
   auto add_backend = [&](CLI::App* cmd) {
     cmd->add_option("--backend", copt.backend, "Context backend: egl (surfaceless, default), egl-device, osmesa, glfw")
         ->check(CLI::IsMember(compiled_backends()));
     cmd->add_option("--device", copt.device, "EGL device index for --backend egl-device (see info)")->check(CLI::NonNegativeNumber);
     cmd->add_flag("--gl-debug", copt.debug, "Print KHR_debug messages to stderr");
+    cmd->add_option("--driver", driver,
+                    "GL driver: default (what the loader gives), llvmpipe, zink (GL on Vulkan on lavapipe), softpipe, "
+                    "egl-device-N; see: oitbench info --drivers");
   };
   auto* info = app.add_subcommand("info", "Show the context: backend, vendor, renderer, limits, extensions");
   add_backend(info);
+  bool info_drivers = false;
+  info->add_flag("--drivers", info_drivers,
+                 "List the GL drivers this machine offers (each tried in a child process): name, renderer, version, "
+                 "whether oitbench can run on it");
 
   auto* run = app.add_subcommand("run", "Run experiments (the cartesian product of their parameter lists)");
   run->footer(std::string("The CSV gets one row per case and pass (see README, 'CSV schema'). Rows are written as each "
@@ -146,6 +155,12 @@ int run_cli(int argc, char** argv) {
 
   try {
     if (*list) return list_command(registry, lopt);
+    if (*info && info_drivers) return drivers_command(copt);
+    try {
+      apply_driver(find_driver(driver), copt);
+    } catch (const BackendError& e) {
+      throw UsageError(e.what());
+    }
     if (*info) return info_command(copt);
     if (*view) return viewer::run_viewer(registry, v_opt);
     ropt.context = copt;

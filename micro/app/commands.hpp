@@ -16,6 +16,8 @@ struct ListOptions {
 int list_command(const Registry& registry, const ListOptions& o);
 
 int info_command(const ContextOptions& o);
+// info --drivers: every driver of backends/drivers.hpp and EGL device, tried in a child process each.
+int drivers_command(const ContextOptions& o);
 
 struct RunCommand {
   RunOptions options;

@@ -1,7 +1,12 @@
 // oitbench info: the context this machine gives, what the driver can do, its limits.
+#include <sys/wait.h>
+
 #include <cstdio>
+#include <filesystem>
+#include <stdexcept>
 
 #include "app/commands.hpp"
+#include "backends/drivers.hpp"
 
 namespace oitbench::app {
 
@@ -23,7 +28,8 @@ int info_command(const ContextOptions& copt) {
   auto ctx = create_context(copt);
   auto gl = GlInfo::query();
   auto yes = [](bool b) { return b ? "yes" : "no"; };
-  std::printf("backend:        %s\ndevice:         %s\n", ctx->backend().c_str(), ctx->device().c_str());
+  std::printf("backend:        %s\ndevice:         %s\ndriver:         %s (--driver %s)\n", ctx->backend().c_str(),
+              ctx->device().c_str(), driver_slug(gl).c_str(), copt.driver.c_str());
   std::printf("GL_VENDOR:      %s\nGL_RENDERER:    %s\nGL_VERSION:     %s\nGLSL:           %s\n", gl.vendor.c_str(),
               gl.renderer.c_str(), gl.version.c_str(), gl.glsl_version.c_str());
   std::printf("software renderer: %s (primary timer: %s)\n", yes(gl.is_software_renderer()),
@@ -42,6 +48,63 @@ int info_command(const ContextOptions& copt) {
   for (const auto& [k, v] : gl.limits) std::printf("%-40s %lld\n", k.c_str(), v);
   std::printf("extensions: %zu\n", gl.extensions.size());
   return 0;
+}
+
+}  // namespace oitbench::app
+
+namespace oitbench::app {
+
+namespace {
+
+// Runs `exe info --driver NAME` and returns its exit code and output (stdout and stderr together).
+std::pair<int, std::string> probe_driver(const std::string& exe, const std::string& name) {
+  std::string cmd = "'" + exe + "' info --driver '" + name + "' 2>&1";
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return {-1, "cannot start " + exe};
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string line_value(const std::string& text, const std::string& key) {
+  auto at = text.find(key);
+  if (at == std::string::npos) return "";
+  auto start = text.find_first_not_of(' ', at + key.size());
+  auto end = text.find('\n', start);
+  return text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+}
+
+}  // namespace
+
+int drivers_command(const ContextOptions&) {
+  std::error_code ec;
+  std::string exe = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+  if (ec) throw std::runtime_error("cannot find the oitbench binary (/proc/self/exe)");
+  std::vector<DriverSpec> drivers = known_drivers();
+  for (const auto& d : list_egl_devices())
+    drivers.push_back({"egl-device-" + std::to_string(d.index), "EGL device " + std::to_string(d.index) + ": " +
+                                                                     d.extensions + (d.drm_file.empty() ? "" : " " + d.drm_file),
+                       {}, "egl-device", d.index});
+  std::printf("GL drivers on this machine (select one with --driver NAME; each tried in a child process):\n\n");
+  int usable = 0;
+  for (const auto& d : drivers) {
+    auto [code, out] = probe_driver(exe, d.name);
+    std::string renderer = line_value(out, "GL_RENDERER:"), version = line_value(out, "GL_VERSION:");
+    std::printf("%-14s %s\n", d.name.c_str(), d.description.c_str());
+    if (code == 0 && !renderer.empty()) {
+      ++usable;
+      std::printf("%-14s ok: %s, OpenGL %s\n", "", renderer.c_str(), version.c_str());
+    } else {
+      std::string why = line_value(out, "oitbench: ");
+      if (why.empty()) why = "exit code " + std::to_string(code);
+      std::printf("%-14s %s: %s\n", "", out.find("oitbench needs a 4.5 core context") != std::string::npos ? "unsupported" : "not available",
+                  why.c_str());
+    }
+  }
+  std::printf("\n%d usable driver(s). Rows record the driver in the `driver` column.\n", usable);
+  return usable > 0 ? 0 : 3;
 }
 
 }  // namespace oitbench::app

@@ -32,8 +32,19 @@ struct GlInfo {
   static GlInfo query();  // from the current context
 };
 
+// The driver offers a GL version below oitbench's 4.5 core: cases are `unsupported`, not errors.
+class ContextUnsupported : public BackendError {
+ public:
+  ContextUnsupported(const std::string& what, std::string offered) : BackendError(what), offered_(std::move(offered)) {}
+  const std::string& offered() const { return offered_; }  // the GL_VERSION it gave instead
+
+ private:
+  std::string offered_;
+};
+
 struct ContextOptions {
   std::string backend = "egl";  // egl | egl-device | osmesa | glfw
+  std::string driver = "default";  // backends/drivers.hpp: set by apply_driver
   int device = 0;               // egl-device: index into the EGL device list
   int width = 800, height = 600;
   bool visible = false;  // glfw: show the window

@@ -87,8 +87,17 @@ class EglContext final : public Context {
       context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, ctx_attribs);
       if (context_ != EGL_NO_CONTEXT) break;
     }
-    if (context_ == EGL_NO_CONTEXT)
-      throw BackendError("EGL: cannot create a GL 4.5 core context on " + device_ + ": " + egl_error_name(eglGetError()));
+    if (context_ == EGL_NO_CONTEXT) {
+      std::string err = egl_error_name(eglGetError());
+      std::string offered = offered_version(config);
+      eglTerminate(display_);
+      display_ = EGL_NO_DISPLAY;
+      if (!offered.empty())
+        throw ContextUnsupported("the driver offers OpenGL " + offered + " on " + device_ +
+                                     "; oitbench needs a 4.5 core context",
+                                 offered);
+      throw BackendError("EGL: cannot create a GL 4.5 core context on " + device_ + ": " + err);
+    }
     // Surfaceless where EGL_KHR_surfaceless_context exists; a 1x1 pbuffer otherwise.
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
       const EGLint pb_attribs[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
@@ -110,6 +119,29 @@ class EglContext final : public Context {
   std::string device() const override { return device_; }
 
  private:
+  // The best GL version the driver gives instead (a 3.x core, else its default context), for the
+  // `unsupported` reason; empty when it gives none.
+  std::string offered_version(EGLConfig config) {
+    using GetString = const unsigned char* (*)(unsigned);
+    auto get_string = reinterpret_cast<GetString>(eglGetProcAddress("glGetString"));
+    const EGLint core33[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                             EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint plain[] = {EGL_NONE};
+    for (const EGLint* attribs : {core33, plain}) {
+      EGLContext c = eglCreateContext(display_, config, EGL_NO_CONTEXT, attribs);
+      if (c == EGL_NO_CONTEXT) continue;
+      std::string version;
+      if (get_string && eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
+        const unsigned char* v = get_string(0x1F02);  // GL_VERSION
+        if (v) version = reinterpret_cast<const char*>(v);
+        eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      }
+      eglDestroyContext(display_, c);
+      if (!version.empty()) return version;
+    }
+    return "";
+  }
+
   void open_device(const EglEntryPoints& ep, int index) {
     auto devices = query_devices(ep);
     if (devices.empty()) throw BackendError("EGL: no EGL devices (EGL_EXT_device_enumeration missing or empty)");

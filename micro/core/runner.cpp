@@ -10,6 +10,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "backends/drivers.hpp"
 #include "core/csv.hpp"
 #include "core/data_dirs.hpp"
 #include "core/isolation.hpp"
@@ -75,7 +76,11 @@ class Runner {
   Runner(Registry& registry, const RunOptions& options) : registry_(registry), opt_(options) {}
 
   int run(const std::vector<RunRequest>& requests) {
-    ctx_ = create_context(opt_.context);
+    try {
+      ctx_ = create_context(opt_.context);
+    } catch (const ContextUnsupported& e) {
+      return unsupported_driver(requests, e);
+    }
     gl_ = GlInfo::query();
     shaders_ = std::make_unique<ShaderLibrary>(opt_.shader_root);
     if (opt_.program_cache && gl_.has_extension("GL_ARB_get_program_binary"))
@@ -84,25 +89,15 @@ class Runner {
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
     if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_));
     run_columns_ = {{"schema", std::to_string(kCsvSchema)}, {"backend", ctx_->backend()}, {"device", ctx_->device()},
+                    {"driver", driver_slug(gl_)},
                     {"gl_vendor", gl_.vendor}, {"gl_renderer", gl_.renderer}, {"gl_version", gl_.version},
                     {"git_sha", git_sha()}, {"hostname", host_name()}, {"cpu_model", cpu_model()},
                     {"lp_num_threads", lp_num_threads()}, {"env", recorded_env()}, {"preset", opt_.preset_name}};
 
     // Expand every request first so progress can say "case i of n".
-    std::vector<Planned> plan;
+    std::vector<Planned> plan = make_plan(requests);
     size_t total_cases = 0;
-    for (const auto& r : requests) {
-      Experiment* e = registry_.find(r.experiment);
-      const bool quick = opt_.quick || r.quick;
-      Resolution res = opt_.resolution ? *opt_.resolution
-                       : r.resolution  ? *r.resolution
-                       : quick         ? e->quick_resolution()
-                                       : e->default_resolution();
-      int reps = opt_.reps_given ? opt_.reps : r.reps.value_or(quick ? std::min(opt_.reps, 3) : opt_.reps);
-      int warmup = opt_.warmup_given ? opt_.warmup : r.warmup.value_or(opt_.warmup);
-      plan.push_back({e, res, reps, warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
-      total_cases += plan.back().cases.size();
-    }
+    for (const auto& p : plan) total_cases += p.cases.size();
     progress_ = std::make_unique<Progress>(opt_.progress, total_cases);
     watchdog_ = std::make_unique<Watchdog>(opt_.timeout_s, opt_.out);
     for (auto& p : plan) {
@@ -139,6 +134,42 @@ class Runner {
   }
 
  private:
+  std::vector<Planned> make_plan(const std::vector<RunRequest>& requests) const {
+    std::vector<Planned> plan;
+    for (const auto& r : requests) {
+      Experiment* e = registry_.find(r.experiment);
+      const bool quick = opt_.quick || r.quick;
+      Resolution res = opt_.resolution ? *opt_.resolution
+                       : r.resolution  ? *r.resolution
+                       : quick         ? e->quick_resolution()
+                                       : e->default_resolution();
+      int reps = opt_.reps_given ? opt_.reps : r.reps.value_or(quick ? std::min(opt_.reps, 3) : opt_.reps);
+      int warmup = opt_.warmup_given ? opt_.warmup : r.warmup.value_or(opt_.warmup);
+      plan.push_back({e, res, reps, warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
+    }
+    return plan;
+  }
+
+  // The driver gives no GL 4.5 core context: every case is `unsupported`, with the version it offered.
+  int unsupported_driver(const std::vector<RunRequest>& requests, const ContextUnsupported& e) {
+    writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
+    run_columns_ = {{"schema", std::to_string(kCsvSchema)}, {"backend", opt_.context.backend},
+                    {"driver", opt_.context.driver}, {"gl_version", e.offered()}, {"git_sha", git_sha()},
+                    {"hostname", host_name()}, {"cpu_model", cpu_model()}, {"lp_num_threads", lp_num_threads()},
+                    {"env", recorded_env()}, {"preset", opt_.preset_name}};
+    size_t cases = 0;
+    for (const auto& p : make_plan(requests))
+      for (const auto& c : p.cases) {
+        CaseRecord rec = new_record(c);
+        rec.fail(Status::Unsupported, e.what());
+        write(*writer_, summary_rows(row_settings(p), rec));
+        ++cases;
+      }
+    std::fprintf(stderr, "oitbench: %s: %zu case(s) unsupported -> %s\n", e.what(), cases,
+                 opt_.out == "-" ? "stdout" : opt_.out.c_str());
+    return 3;
+  }
+
   RowSettings row_settings(const Planned& p) const {
     return {run_columns_, p.exp->name(), p.res, p.reps, p.warmup, use_gpu_timer_};
   }
@@ -266,6 +297,7 @@ class Runner {
     std::string out = dir + "/case.csv", raw = dir + "/raw.csv";
     std::vector<std::string> args = {"/proc/self/exe", "run", exp.name(), "--out", out, "--isolate", "never",
                                      "--no-progress", "--isolated-child", "--backend", opt_.context.backend,
+                                     "--driver", opt_.context.driver,
                                      "--device", std::to_string(opt_.context.device),
                                      "--resolution", std::to_string(p.res.width) + "x" + std::to_string(p.res.height),
                                      "--reps", std::to_string(p.reps), "--warmup", std::to_string(p.warmup),

@@ -55,6 +55,8 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"reason", T::Text, "", "why the case is not ok, or a note on an ok one", "result"},
       {"backend", T::Text, "", "context backend: egl, egl-device, osmesa, glfw", "run"},
       {"device", T::Text, "", "the display or EGL device the context ran on", "run"},
+      {"driver", T::Text, "", "the GL driver, named from its GL strings: llvmpipe, zink-lavapipe, nvidia-h200, ... "
+                              "(--driver selects one; see oitbench info --drivers)", "run"},
       {"gl_vendor", T::Text, "", "GL_VENDOR", "run"},
       {"gl_renderer", T::Text, "", "GL_RENDERER", "run"},
       {"gl_version", T::Text, "", "GL_VERSION", "run"},
@@ -100,6 +102,7 @@ const std::vector<ColumnSpec>& raw_base_columns() {
       {"cpu_ms", T::Number, "ms", "CPU clock around glFinish", "timing"},
       {"gpu_ms", T::Number, "ms", "GL_TIME_ELAPSED, where the driver has it", "timing"},
       {"backend", T::Text, "", "context backend", "run"},
+      {"driver", T::Text, "", "the GL driver (as in the summary file)", "run"},
       {"gl_renderer", T::Text, "", "GL_RENDERER", "run"},
       {"git_sha", T::Text, "", "the commit the binary was built from", "run"},
       {"timestamp_utc", T::Text, "", "when the row was written", "run"},
