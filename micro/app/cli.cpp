@@ -96,6 +96,9 @@ int run_cli(int argc, char** argv) {
   run->add_option("--timer", ropt.timer, "Primary clock: auto (CPU on software renderers, GPU queries elsewhere), cpu, gpu")
       ->check(CLI::IsMember({"auto", "cpu", "gpu"}));
   bool no_interleave = false, no_progress = false, no_program_cache = false;
+  run->add_flag("--sync-passes", ropt.sync_passes,
+                "glFinish around every timed pass on hardware drivers too (serialises the pipeline; software "
+                "renderers always do it). Default there: passes back to back, timed by GL_TIME_ELAPSED queries");
   run->add_flag("--no-program-cache", no_program_cache,
                 "Compile every program from source (to measure compile time); default: reuse linked programs "
                 "from ~/.cache/oitbench/programs (glGetProgramBinary, keyed on sources, defines and driver)");

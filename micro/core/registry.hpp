@@ -39,8 +39,14 @@ struct Validation {
 class CaseContext {
  public:
   CaseContext(const ShaderLibrary& shaders, const GlInfo& gl, Resolution res, std::string fault, unsigned seed,
-              std::string image_stem = "")
-      : shaders_(shaders), gl_(gl), res_(res), fault_(std::move(fault)), seed_(seed), image_stem_(std::move(image_stem)) {}
+              std::string image_stem = "", bool gpu_clock = false)
+      : shaders_(shaders),
+        gl_(gl),
+        res_(res),
+        fault_(std::move(fault)),
+        seed_(seed),
+        image_stem_(std::move(image_stem)),
+        gpu_clock_(gpu_clock) {}
   const ShaderLibrary& shaders() const { return shaders_; }
   const GlInfo& gl() const { return gl_; }
   int width() const { return res_.width; }
@@ -50,6 +56,9 @@ class CaseContext {
   // Where a case that can show its result writes images at validation (STEM.png, STEM-diff8.png,
   // ...): an output option of `oitbench render`, not a parameter. Empty: no images.
   const std::string& image_stem() const { return image_stem_; }
+  // The run's primary clock is GL_TIME_ELAPSED (hardware drivers): a case that times something
+  // itself (BMA-AUTO's calibration) uses the same clock.
+  bool gpu_clock() const { return gpu_clock_; }
   // Compiles with the experiment's defines plus the fault define (OITBENCH_FAULT_WRONG_RESULT, ...).
   gl::Program build(const std::vector<ShaderStage>& stages, Defines defines) const;
 
@@ -60,6 +69,7 @@ class CaseContext {
   std::string fault_;
   unsigned seed_;
   std::string image_stem_;
+  bool gpu_clock_;
 };
 
 class CaseInstance {

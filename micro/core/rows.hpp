@@ -40,6 +40,7 @@ struct RowSettings {
   Resolution res;
   int reps = 0, warmup = 0;
   bool gpu_primary = false;  // GL queries are the primary clock where every repetition has one
+  bool synchronised = true;  // passes bracketed by glFinish: their CPU time is their work
 };
 
 // One row per pass (when there are several) and `total`.

@@ -86,6 +86,8 @@ class Runner {
     if (opt_.program_cache && gl_.has_extension("GL_ARB_get_program_binary"))
       shaders_->enable_program_cache(default_program_cache_dir(), gl_.vendor + "|" + gl_.renderer + "|" + gl_.version);
     use_gpu_timer_ = opt_.timer == "gpu" || (opt_.timer == "auto" && !gl_.is_software_renderer() && gl_.has_timer_query());
+    // A CPU rasterizer has no pipeline to keep full, and its queries are wrong: bracket every pass.
+    sync_passes_ = opt_.sync_passes || gl_.is_software_renderer() || !use_gpu_timer_;
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
     if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_));
     run_columns_ = {{"schema", std::to_string(kCsvSchema)}, {"backend", ctx_->backend()}, {"device", ctx_->device()},
@@ -171,7 +173,7 @@ class Runner {
   }
 
   RowSettings row_settings(const Planned& p) const {
-    return {run_columns_, p.exp->name(), p.res, p.reps, p.warmup, use_gpu_timer_};
+    return {run_columns_, p.exp->name(), p.res, p.reps, p.warmup, use_gpu_timer_, sync_passes_};
   }
 
   static CaseRecord new_record(const ParamSet& params) {
@@ -189,7 +191,7 @@ class Runner {
     }
     try {
       CaseContext cctx(*shaders_, gl_, res, rec.params.get("fault"), static_cast<unsigned>(rec.params.get_int("seed")),
-                       opt_.image_stem);
+                       opt_.image_stem, use_gpu_timer_);
       glFinish();
       auto t0 = Clock::now();
       auto before = shaders_->cache_counts();
@@ -221,7 +223,7 @@ class Runner {
       watchdog_->set_current(exp.name() + " " + group[i].describe());
       prepare(exp, p.res, live[i]);
     }
-    PassTimer timer(gl_.has_timer_query());  // queries recorded always; primary only where trusted
+    PassTimer timer(gl_.has_timer_query(), sync_passes_);  // queries recorded always; primary only where trusted
     // Warm-up, then timed repetitions, interleaved across the group: A B C A B C ...
     for (int r = -p.warmup; r < p.reps && !signals_.stopped(); ++r) {
       for (auto& c : live) {
@@ -306,6 +308,7 @@ class Runner {
     if (raw_writer_) args.insert(args.end(), {"--raw", raw});
     if (!opt_.interleave) args.push_back("--no-interleave");
     if (!opt_.program_cache) args.push_back("--no-program-cache");
+    if (opt_.sync_passes) args.push_back("--sync-passes");
     // Only what the case uses: the child's grid gives the rest their defaults and marks them unused.
     for (const auto& [k, v] : params.used_values()) args.insert(args.end(), {"--set", k + "=" + v});
     auto outcome = run_child(
@@ -361,7 +364,7 @@ class Runner {
   std::unique_ptr<Context> ctx_;
   GlInfo gl_;
   std::unique_ptr<ShaderLibrary> shaders_;
-  bool use_gpu_timer_ = false;
+  bool use_gpu_timer_ = false, sync_passes_ = true;
   std::unique_ptr<CsvWriter> writer_, raw_writer_;
   Row run_columns_;
   std::map<Status, int> counts_;

@@ -31,6 +31,7 @@ struct RunOptions {
   std::string out = "-";
   std::string raw;               // --raw: every repetition as a row
   std::string timer = "auto";    // auto | cpu | gpu
+  bool sync_passes = false;      // glFinish around every pass on hardware drivers too (always on software ones)
   bool interleave = true;
   std::string isolate = "auto";  // auto (hang-prone experiments) | always | never
   double timeout_s = 600;        // per case, watchdog

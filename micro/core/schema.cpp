@@ -76,7 +76,10 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"cpu_mad_ms", T::Number, "ms", "its median absolute deviation", "timing"},
       {"gpu_median_ms", T::Number, "ms", "median of the GL_TIME_ELAPSED queries, where the driver has them", "timing"},
       {"gpu_mad_ms", T::Number, "ms", "its median absolute deviation", "timing"},
-      {"timer", T::Text, "", "the primary clock of median_ms: cpu or gpu", "timing"},
+      {"timer", T::Text, "", "the primary clock of median_ms: cpu or gpu (total and CPU passes: always cpu)", "timing"},
+      {"pass_sync", T::Flag, "", "1: every pass bracketed by glFinish, so cpu_median_ms is its work (software "
+                                 "renderers, --sync-passes); 0: passes ran back to back, timed by their queries, "
+                                 "and a pass's cpu_median_ms is its submission", "timing"},
       {"compile_ms", T::Number, "ms", "preparing the case: compile, link, allocate, upload", "timing"},
       {"program_cache", T::Text, "", "hit, miss, partial or off: whether compile_ms paid for compiling", "timing"},
       {"warmup_ms", T::Number, "ms", "the first (untimed) repetition, JIT included", "timing"},

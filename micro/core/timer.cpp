@@ -4,20 +4,22 @@
 
 namespace oitbench {
 
-PassTimer::Scope::Scope(PassTimer& t, std::string name) : timer_(t) {
+PassTimer::Scope::Scope(PassTimer& t, std::string name, bool cpu_work) : timer_(t), cpu_work_(cpu_work) {
   if (t.in_pass_) throw std::logic_error("timed pass '" + name + "' started inside another pass");
   t.in_pass_ = true;
   index_ = t.samples_.size();
-  t.samples_.push_back({std::move(name), 0, -1});
-  if (t.use_queries_ && t.queries_.size() <= index_) t.queries_.push_back(gl::make_query(GL_TIME_ELAPSED));
-  glFinish();
+  t.samples_.push_back({std::move(name), 0, -1, cpu_work});
+  const bool query = t.use_queries_ && !cpu_work;
+  while (query && t.queries_.size() <= index_) t.queries_.push_back(gl::make_query(GL_TIME_ELAPSED));
+  if (t.sync_ || cpu_work) glFinish();
   start_ = std::chrono::steady_clock::now();
-  if (t.use_queries_) glBeginQuery(GL_TIME_ELAPSED, t.queries_[index_].get());
+  if (query) glBeginQuery(GL_TIME_ELAPSED, t.queries_[index_].get());
 }
 
 PassTimer::Scope::~Scope() {
-  if (timer_.use_queries_) glEndQuery(GL_TIME_ELAPSED);
-  glFinish();
+  const bool query = timer_.use_queries_ && !cpu_work_;
+  if (query) glEndQuery(GL_TIME_ELAPSED);
+  if (timer_.sync_ && !cpu_work_) glFinish();
   auto end = std::chrono::steady_clock::now();
   timer_.samples_[index_].cpu_ms = std::chrono::duration<double, std::milli>(end - start_).count();
   timer_.in_pass_ = false;
@@ -28,8 +30,11 @@ void PassTimer::begin_repetition() { samples_.clear(); }
 std::vector<PassSample> PassTimer::end_repetition() {
   if (use_queries_) {
     for (size_t i = 0; i < samples_.size(); ++i) {
+      if (samples_[i].cpu_work) continue;
       GLuint64 ns = 0;
       GLint available = 0;
+      // Unsynchronised passes may still be running: the caller's glFinish after the repetition
+      // has drained them, so the result is there; ask for it only then.
       glGetQueryObjectiv(queries_[i].get(), GL_QUERY_RESULT_AVAILABLE, &available);
       if (available) {
         glGetQueryObjectui64v(queries_[i].get(), GL_QUERY_RESULT, &ns);
