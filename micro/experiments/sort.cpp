@@ -1,8 +1,9 @@
 // sort: sorting N fragments per pixel (Brüll 2018 4.5, figures 4.7/4.8, tables A.1 and A.3;
 // Knowles 2014 section 3, the register-based sort). Each pixel's N 64-bit fragments (32-bit depth
 // key + RGBA8 payload) come from an SSBO filled on the CPU with the case's seed; a fragment or
-// compute pass sorts them with one of shaders/sort/*.glsl and writes them to a second SSBO; the
-// CPU checks every pixel: keys in order, and the same multiset of (key, payload) pairs.
+// compute pass sorts them with one of the library's sorts (shaders/sorts/, the files the oit and
+// stencil resolves run too) and writes them to a second SSBO; the CPU checks every pixel: keys in
+// order, and the same multiset of (key, payload) pairs.
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -22,10 +23,12 @@ namespace {
 
 using Fragment = PackedFragment;
 
-// The sort algorithms: parameter value, the define that selects its file in
-// shaders/sort/algorithms.glsl, and which memory forms exist.
+// The sort algorithms: parameter value, its library file (shaders/<file>), the define that selects
+// that file in shaders/sort/algorithms.glsl, the variant define the file reads, and which memory
+// forms exist.
 struct Algorithm {
   const char* variant;
+  const char* file;
   const char* use_define;
   const char* extra_define;  // a define the algorithm's file reads, or nullptr
   bool has_local, has_registers;
@@ -34,20 +37,21 @@ struct Algorithm {
 
 const std::vector<Algorithm>& algorithms() {
   static const std::vector<Algorithm> table = {
-      {"insertion-naive", "SORT_USE_INSERTION_NAIVE", nullptr, true, true, ""},
-      {"insertion-v1", "SORT_USE_INSERTION_V1", nullptr, true, true, ""},
-      {"insertion-v2", "SORT_USE_INSERTION_V2", nullptr, true, true, ""},
-      {"bubble", "SORT_USE_BUBBLE", nullptr, true, true, ""},
-      {"bubble-early", "SORT_USE_BUBBLE", "SORT_BUBBLE_EARLY_OUT", true, true, ""},
-      {"shell", "SORT_USE_SHELL", nullptr, true, true, ""},
-      {"shell-offset", "SORT_USE_SHELL", "SORT_SHELL_OFFSET", true, true, ""},
-      {"shell-register", "SORT_USE_SHELL_REGISTER", nullptr, true, true, ""},
-      {"merge", "SORT_USE_MERGE", nullptr, true, false,
+      // insertion-naive's write a[j+1] = key is chosen by `assign` (Table A.1): SORT_ASSIGN_*.
+      {"insertion-naive", "sorts/insertion.glsl", "SORT_USE_INSERTION", nullptr, true, true, ""},
+      {"insertion-v1", "sorts/insertion.glsl", "SORT_USE_INSERTION", "SORT_ASSIGN_LOOP", true, true, ""},
+      {"insertion-v2", "sorts/insertion.glsl", "SORT_USE_INSERTION", "SORT_INSERTION_SWAP", true, true, ""},
+      {"bubble", "sorts/bubble.glsl", "SORT_USE_BUBBLE", nullptr, true, true, ""},
+      {"bubble-early", "sorts/bubble.glsl", "SORT_USE_BUBBLE", "SORT_BUBBLE_EARLY_OUT", true, true, ""},
+      {"shell", "sorts/shell.glsl", "SORT_USE_SHELL", nullptr, true, true, ""},
+      {"shell-offset", "sorts/shell.glsl", "SORT_USE_SHELL", "SORT_SHELL_OFFSET", true, true, ""},
+      {"shell-register", "sorts/shell.glsl", "SORT_USE_SHELL", "SORT_SHELL_SWAP", true, true, ""},
+      {"merge", "sorts/merge.glsl", "SORT_USE_MERGE", nullptr, true, false,
        "merge sort reads through cursors that depend on the keys: its array must be indexable, so it has no "
        "register form (memory=local only)"},
-      {"bitonic", "SORT_USE_BITONIC", nullptr, true, true, ""},
-      {"odd-even-merge", "SORT_USE_ODD_EVEN_MERGE", nullptr, true, true, ""},
-      {"rbs", "SORT_USE_RBS", nullptr, false, true,
+      {"bitonic", "sorts/bitonic.glsl", "SORT_USE_BITONIC", nullptr, true, true, ""},
+      {"odd-even-merge", "sorts/odd_even_merge.glsl", "SORT_USE_ODD_EVEN_MERGE", nullptr, true, true, ""},
+      {"rbs", "sorts/register_sort.glsl", "SORT_USE_REGISTER_SORT", nullptr, false, true,
        "rbs is Knowles 2014 Listing 5, an insertion network unrolled by hand with literal indices: it has no "
        "local-memory form (memory=registers only)"},
   };
@@ -216,7 +220,7 @@ class SortExperiment final : public Experiment {
   }
   std::vector<ParamSpec> params() const override {
     ParamSpec variant{"variant",
-                      "the sort (shaders/sort/<name>.glsl): insertion-naive (Listing 4.11), insertion-v1 (select-loop "
+                      "the sort (shaders/sorts/<file>.glsl): insertion-naive (Listing 4.11), insertion-v1 (select-loop "
                       "write), insertion-v2 (Listing 4.12), bubble / bubble-early (Listing 4.10), shell (4.13; miscompiled by llvmpipe), "
                       "shell-offset (4.13 indexed like 4.11), shell-register (4.14), merge (bottom-up), bitonic, odd-even-merge (networks), rbs (Knowles "
                       "Listing 5)",
