@@ -35,6 +35,7 @@ Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block) {
     d.push_back({"SORT_IS", ""});
   } else if (sort == ResolveSort::IMS) {
     d.push_back({"SORT_IMS", ""});
+    d.push_back({"SORT_MERGE_HALF_SCRATCH", ""});  // Knowles 2013's merge (shaders/sorts/merge.glsl)
   } else {
     unsigned m = std::min(block, max_frags);
     d.push_back({sort == ResolveSort::RBS_L ? "SORT_RBS" : "SORT_RBS_G", ""});
