@@ -33,7 +33,7 @@ KNOWN_METRICS = {
     "lost_updates", "inconsistent_nodes", "line_segments", "peak_depth", "frac_pixels_off", "nonfinite",
     "polygons", "mean_depth", "node_pool", "bma_intervals", "bma_auto_choice", "bma_auto_source",
     "bma_auto_timings", "model_max_diff", "capped_updates", "flicker", "flicker_max", "lock_extension",
-    "touched_outside",
+    "touched_outside", "sort_source",
     "predicted_occupancy", "predicted_threads_per_sm", "model_gpu_used", "mismatched_pixels",
     "rmse", "max_abs_error", "mean_abs_error", "psnr", "max_error", "mismatches", "overflow_pixels",
     "lost_fragments", "total_fragments", "peak_depth_complexity",

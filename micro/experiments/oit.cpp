@@ -72,6 +72,7 @@ class OitExperiment final : public Experiment {
             "max_frags",        "truncated_pixels", "node_pool",     "overflow_rerenders", "bma_intervals",
             "node_pool_bytes",  "capture_count_ms", "bma_auto_choice", "bma_auto_source", "bma_auto_timings",
             "max_abs_error",    "rmse",            "bad_pixels",     "visit_errors",  "tied_pixels",
+            "sort_source",  // the library sort files the resolve ran, with hashes (exact techniques)
             // approximate techniques (micro/oit/approx.cpp)
             "psnr", "frac_pixels_off", "model_rmse", "model_max_diff", "nonfinite", "capped_updates", "flicker",
             "flicker_max", "flicker_pixels"};

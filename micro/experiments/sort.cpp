@@ -3,11 +3,13 @@
 // key + RGBA8 payload) come from an SSBO filled on the CPU with the case's seed; a fragment or
 // compute pass sorts them with one of the library's sorts (shaders/sorts/, the files the oit and
 // stencil resolves run too) and writes them to a second SSBO; the CPU checks every pixel: keys in
-// order, and the same multiset of (key, payload) pairs.
+// order, and the same multiset of (key, payload) pairs. Each row names the library file it ran
+// and the hash of its text (`sort_source`).
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -129,6 +131,7 @@ class SortCase final : public CaseInstance {
       std::transform(define.begin(), define.end(), define.begin(), [](char c) { return c == '-' ? '_' : std::toupper(c); });
       defines.push_back({define, ""});
     }
+    sort_source_ = ctx.shaders().source_id(a.file);
     program_ = compute_ ? ctx.build({{GL_COMPUTE_SHADER, "sort/sort.comp"}}, defines)
                         : ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "sort/sort.frag"}},
                                     defines);
@@ -155,6 +158,8 @@ class SortCase final : public CaseInstance {
       quad_.draw();
     }
   }
+
+  std::map<std::string, std::string> metrics() const override { return {{"sort_source", sort_source_}}; }
 
   Validation validate() override {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -207,6 +212,7 @@ class SortCase final : public CaseInstance {
   RenderTarget target_;
   FullscreenTriangle quad_;
   gl::Program program_;
+  std::string sort_source_;
   std::vector<Fragment> input_;
   gl::Buffer in_, out_;
 };
@@ -242,7 +248,9 @@ class SortExperiment final : public Experiment {
                      {"listing"}, {}, {"listing", "direct", "loop", "switch", "if-else"}};
     return {variant, n, stage, memory, keys, assign};
   }
-  std::vector<std::string> metric_columns() const override { return {"unsorted_pixels", "changed_pixels"}; }
+  std::vector<std::string> metric_columns() const override {
+    return {"unsorted_pixels", "changed_pixels", "sort_source"};
+  }
   // 256x256: 65,536 pixels sort like the thesis' 640,000 (800x800) in the same shape, while a
   // local-memory insertion sort of 32 reverse-ordered keys still takes ~0.1 s per pass on llvmpipe.
   Resolution default_resolution() const override { return {256, 256}; }

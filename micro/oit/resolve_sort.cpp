@@ -45,4 +45,16 @@ Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block) {
   return d;
 }
 
+std::vector<std::string> sort_files(ResolveSort sort, unsigned max_frags) {
+  switch (sort) {
+    case ResolveSort::IS: return {"sorts/insertion.glsl"};
+    case ResolveSort::IMS:
+      if (max_frags > 32) return {"sorts/insertion.glsl", "sorts/merge.glsl"};
+      return {"sorts/insertion.glsl"};
+    case ResolveSort::RBS_L:
+    case ResolveSort::RBS_G: return {"sorts/register_sort.glsl"};
+  }
+  return {};
+}
+
 }  // namespace oitbench::oit
