@@ -21,6 +21,7 @@
 #include "oit/fragment_lists.hpp"
 #include "oit/metrics.hpp"
 #include "oit/reference.hpp"
+#include "oit/resolve_sort.hpp"
 
 namespace oitbench {
 
@@ -104,7 +105,7 @@ class LinesCase final : public CaseInstance {
     if (!slices_mode_) {
       max_frags_ = std::max(8u, next_pow2(stats_.peak_depth));
       resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}},
-                           {{"MAX_FRAGS", std::to_string(max_frags_)}, {"SORT_IMS", ""}});
+                           sort_defines(ResolveSort::IMS, max_frags_, 32));
       glProgramUniform3f(resolve_.get(), glGetUniformLocation(resolve_.get(), "background"), background_.r,
                          background_.g, background_.b);
       return;

@@ -108,6 +108,7 @@ class OitExperiment final : public Experiment {
         {"flicker_max", T::Number, "", "its largest pixel"},
         {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"}};
     for (auto& x : own) m.push_back(std::move(x));
+    m.push_back(sort_source_metric());
     for (auto& x : image_error_metrics()) m.push_back(std::move(x));
     return m;
   }

@@ -1,12 +1,15 @@
 // sort: sorting N fragments per pixel (Brüll 2018 4.5, figures 4.7/4.8, tables A.1 and A.3;
 // Knowles 2014 section 3, the register-based sort). Each pixel's N 64-bit fragments (32-bit depth
 // key + RGBA8 payload) come from an SSBO filled on the CPU with the case's seed; a fragment or
-// compute pass sorts them with one of shaders/sort/*.glsl and writes them to a second SSBO; the
-// CPU checks every pixel: keys in order, and the same multiset of (key, payload) pairs.
+// compute pass sorts them with one of the library's sorts (shaders/sorts/, the files the oit and
+// stencil resolves run too) and writes them to a second SSBO; the CPU checks every pixel: keys in
+// order, and the same multiset of (key, payload) pairs. Each row names the library file it ran
+// and the hash of its text (`sort_source`).
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -14,6 +17,7 @@
 
 #include "oit/packed_fragment.hpp"
 #include "core/registry.hpp"
+#include "oit/metrics.hpp"
 #include "gl/render_target.hpp"
 
 namespace oitbench {
@@ -22,10 +26,12 @@ namespace {
 
 using Fragment = PackedFragment;
 
-// The sort algorithms: parameter value, the define that selects its file in
-// shaders/sort/algorithms.glsl, and which memory forms exist.
+// The sort algorithms: parameter value, its library file (shaders/<file>), the define that selects
+// that file in shaders/sort/algorithms.glsl, the variant define the file reads, and which memory
+// forms exist.
 struct Algorithm {
   const char* variant;
+  const char* file;
   const char* use_define;
   const char* extra_define;  // a define the algorithm's file reads, or nullptr
   bool has_local, has_registers;
@@ -34,20 +40,21 @@ struct Algorithm {
 
 const std::vector<Algorithm>& algorithms() {
   static const std::vector<Algorithm> table = {
-      {"insertion-naive", "SORT_USE_INSERTION_NAIVE", nullptr, true, true, ""},
-      {"insertion-v1", "SORT_USE_INSERTION_V1", nullptr, true, true, ""},
-      {"insertion-v2", "SORT_USE_INSERTION_V2", nullptr, true, true, ""},
-      {"bubble", "SORT_USE_BUBBLE", nullptr, true, true, ""},
-      {"bubble-early", "SORT_USE_BUBBLE", "SORT_BUBBLE_EARLY_OUT", true, true, ""},
-      {"shell", "SORT_USE_SHELL", nullptr, true, true, ""},
-      {"shell-offset", "SORT_USE_SHELL", "SORT_SHELL_OFFSET", true, true, ""},
-      {"shell-register", "SORT_USE_SHELL_REGISTER", nullptr, true, true, ""},
-      {"merge", "SORT_USE_MERGE", nullptr, true, false,
+      // insertion-naive's write a[j+1] = key is chosen by `assign` (Table A.1): SORT_ASSIGN_*.
+      {"insertion-naive", "sorts/insertion.glsl", "SORT_USE_INSERTION", nullptr, true, true, ""},
+      {"insertion-v1", "sorts/insertion.glsl", "SORT_USE_INSERTION", "SORT_ASSIGN_LOOP", true, true, ""},
+      {"insertion-v2", "sorts/insertion.glsl", "SORT_USE_INSERTION", "SORT_INSERTION_SWAP", true, true, ""},
+      {"bubble", "sorts/bubble.glsl", "SORT_USE_BUBBLE", nullptr, true, true, ""},
+      {"bubble-early", "sorts/bubble.glsl", "SORT_USE_BUBBLE", "SORT_BUBBLE_EARLY_OUT", true, true, ""},
+      {"shell", "sorts/shell.glsl", "SORT_USE_SHELL", nullptr, true, true, ""},
+      {"shell-offset", "sorts/shell.glsl", "SORT_USE_SHELL", "SORT_SHELL_OFFSET", true, true, ""},
+      {"shell-register", "sorts/shell.glsl", "SORT_USE_SHELL", "SORT_SHELL_SWAP", true, true, ""},
+      {"merge", "sorts/merge.glsl", "SORT_USE_MERGE", nullptr, true, false,
        "merge sort reads through cursors that depend on the keys: its array must be indexable, so it has no "
        "register form (memory=local only)"},
-      {"bitonic", "SORT_USE_BITONIC", nullptr, true, true, ""},
-      {"odd-even-merge", "SORT_USE_ODD_EVEN_MERGE", nullptr, true, true, ""},
-      {"rbs", "SORT_USE_RBS", nullptr, false, true,
+      {"bitonic", "sorts/bitonic.glsl", "SORT_USE_BITONIC", nullptr, true, true, ""},
+      {"odd-even-merge", "sorts/odd_even_merge.glsl", "SORT_USE_ODD_EVEN_MERGE", nullptr, true, true, ""},
+      {"rbs", "sorts/register_sort.glsl", "SORT_USE_REGISTER_SORT", nullptr, false, true,
        "rbs is Knowles 2014 Listing 5, an insertion network unrolled by hand with literal indices: it has no "
        "local-memory form (memory=registers only)"},
   };
@@ -125,6 +132,7 @@ class SortCase final : public CaseInstance {
       std::transform(define.begin(), define.end(), define.begin(), [](char c) { return c == '-' ? '_' : std::toupper(c); });
       defines.push_back({define, ""});
     }
+    sort_source_ = ctx.shaders().source_id(a.file);
     program_ = compute_ ? ctx.build({{GL_COMPUTE_SHADER, "sort/sort.comp"}}, defines)
                         : ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "sort/sort.frag"}},
                                     defines);
@@ -151,6 +159,8 @@ class SortCase final : public CaseInstance {
       quad_.draw();
     }
   }
+
+  std::map<std::string, std::string> metrics() const override { return {{"sort_source", sort_source_}}; }
 
   Validation validate() override {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -203,6 +213,7 @@ class SortCase final : public CaseInstance {
   RenderTarget target_;
   FullscreenTriangle quad_;
   gl::Program program_;
+  std::string sort_source_;
   std::vector<Fragment> input_;
   gl::Buffer in_, out_;
 };
@@ -216,7 +227,7 @@ class SortExperiment final : public Experiment {
   }
   std::vector<ParamSpec> params() const override {
     ParamSpec variant{"variant",
-                      "the sort (shaders/sort/<name>.glsl): insertion-naive (Listing 4.11), insertion-v1 (select-loop "
+                      "the sort (shaders/sorts/<file>.glsl): insertion-naive (Listing 4.11), insertion-v1 (select-loop "
                       "write), insertion-v2 (Listing 4.12), bubble / bubble-early (Listing 4.10), shell (4.13; miscompiled by llvmpipe), "
                       "shell-offset (4.13 indexed like 4.11), shell-register (4.14), merge (bottom-up), bitonic, odd-even-merge (networks), rbs (Knowles "
                       "Listing 5)",
@@ -240,7 +251,8 @@ class SortExperiment final : public Experiment {
   }
   std::vector<MetricSpec> metric_specs() const override {
     return {{"unsorted_pixels", ValueType::Integer, "", "pixels whose keys are out of order after the sort"},
-            {"changed_pixels", ValueType::Integer, "", "pixels whose multiset of (key, payload) pairs changed"}};
+            {"changed_pixels", ValueType::Integer, "", "pixels whose multiset of (key, payload) pairs changed"},
+            oit::sort_source_metric()};
   }
   // 256x256: 65,536 pixels sort like the thesis' 640,000 (800x800) in the same shape, while a
   // local-memory insertion sort of 32 reverse-ordered keys still takes ~0.1 s per pass on llvmpipe.

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/registry.hpp"
+#include "oit/metrics.hpp"
 #include "gl/render_target.hpp"
 #include "oit/storage_layout.hpp"
 
@@ -49,6 +51,7 @@ class StencilCase final : public CaseInstance {
     capture_ = ctx.build({{GL_VERTEX_SHADER, "common/layers.vert"}, {GL_FRAGMENT_SHADER, "stencil/capture.frag"}},
                          capture_defines);
     defines.push_back({sort_ ? "RESOLVE_SORT" : "RESOLVE_BLEND", ""});
+    if (sort_) sort_source_ = ctx.shaders().source_id("sorts/insertion.glsl");  // what resolve.frag includes
     resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "stencil/resolve.frag"}},
                          defines);
     for (GLuint prog : {capture_.get(), resolve_.get()})
@@ -92,6 +95,12 @@ class StencilCase final : public CaseInstance {
     quad_.draw();
     glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
+  }
+
+  // resolve=sort runs the library's insertion sort (shaders/sorts/insertion.glsl); blend sorts nothing.
+  std::map<std::string, std::string> metrics() const override {
+    if (!sort_) return {};
+    return {{"sort_source", sort_source_}};
   }
 
   // Outside the band every pixel must still be the background, bit for bit; inside, the
@@ -151,6 +160,7 @@ class StencilCase final : public CaseInstance {
   FullscreenTriangle quad_;
   gl::VertexArray vao_;
   gl::Program capture_, resolve_;
+  std::string sort_source_;
 };
 
 class StencilExperiment final : public Experiment {
@@ -179,7 +189,8 @@ class StencilExperiment final : public Experiment {
   std::vector<MetricSpec> metric_specs() const override {
     return {{"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"},
             {"touched_outside", ValueType::Integer, "", "pixels outside the coverage the resolve wrote"},
-            {"covered_pixels", ValueType::Integer, "", "pixels inside the coverage"}};
+            {"covered_pixels", ValueType::Integer, "", "pixels inside the coverage"},
+            oit::sort_source_metric()};
   }
   Resolution default_resolution() const override { return {800, 800}; }  // the thesis's
   Resolution quick_resolution() const override { return {128, 128}; }

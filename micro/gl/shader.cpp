@@ -96,6 +96,14 @@ AssembledSource ShaderLibrary::assemble_text(const std::string& name, const std:
   return a.out;
 }
 
+std::string ShaderLibrary::source_id(const std::string& relative_path) const {
+  uint32_t h = 2166136261u;  // FNV-1a, 32 bits
+  for (unsigned char c : read_file(root_ / relative_path)) h = (h ^ c) * 16777619u;
+  char hex[9];
+  std::snprintf(hex, sizeof hex, "%08x", static_cast<unsigned>(h));
+  return relative_path + "@" + hex;
+}
+
 AssembledSource ShaderLibrary::assemble(const std::string& path, const Defines& defines) const {
   auto full = root_ / path;
   Assembler a{root_, {}, {}, {}};

@@ -40,6 +40,11 @@ class ShaderLibrary {
   // Assembles from text already in memory (tests, generated code); includes resolve from the root.
   AssembledSource assemble_text(const std::string& name, const std::string& text, const Defines& defines) const;
 
+  // "sorts/insertion.glsl@1a2b3c4d": the path (relative to the root) and the FNV-1a 32-bit hash of
+  // the file's bytes as read now, in hex; names the code a case ran (the `sort_source` column).
+  // Throws ShaderError for a missing file.
+  std::string source_id(const std::string& relative_path) const;
+
   // Compiles and links; throws ShaderError whose message holds the mapped log and the defines.
   // With a program cache, a program linked before (same sources, defines and driver) is loaded
   // from its glGetProgramBinary image instead: big unrolled sorts compile for seconds.

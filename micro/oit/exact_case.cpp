@@ -89,6 +89,7 @@ class ExactCase final : public OitCase {
     if (native_) return;
     if (compute_) {
       auto [gx, gy] = parse_group(p.get("cs_group"));
+      note_sort(sort_of_technique(technique_), max_frags_);
       compute_resolve_ = std::make_unique<ComputeResolve>(ctx, resolve_defines(sort_of_technique(technique_), max_frags_),
                                                           scene_.background, gx, gy);
       return;
@@ -110,6 +111,7 @@ class ExactCase final : public OitCase {
         if (used[i]) interval_program(i);
     } else {
       base_ = build_resolve(sort_of_technique(technique_), max_frags_);
+      note_sort(sort_of_technique(technique_), max_frags_);
     }
   }
 
@@ -124,6 +126,13 @@ class ExactCase final : public OitCase {
     return target_.color_texture();
   }
   const FragmentStorage* fragments() const override { return lists_.get(); }
+  // sort_source: the library files of the sorts the resolve programs run, with their hashes
+  // ("sorts/insertion.glsl@1a2b3c4d+sorts/merge.glsl@..."); empty for CPU-NATIVE.
+  std::map<std::string, std::string> metrics() const override {
+    std::string s;
+    for (const auto& id : sort_sources_) s += (s.empty() ? "" : "+") + id;
+    return {{"sort_source", s}};
+  }
   unsigned max_frags() const override { return max_frags_; }
 
   void run(PassTimer& timer) override {
@@ -350,8 +359,20 @@ class ExactCase final : public OitCase {
   }
 
   const gl::Program& interval_program(size_t i) {
-    if (!interval_programs_[i]) interval_programs_[i] = build_resolve(interval_sort(i), interval_tops_[i]);
+    if (!interval_programs_[i]) {
+      interval_programs_[i] = build_resolve(interval_sort(i), interval_tops_[i]);
+      note_sort(interval_sort(i), interval_tops_[i]);
+    }
     return *interval_programs_[i];
+  }
+
+  // Records the library files a resolve program built with these settings runs (sort_source),
+  // hashed as read now, each once, in the order first used.
+  void note_sort(ResolveSort sort, unsigned max_frags) {
+    for (const auto& file : sort_files(sort, max_frags)) {
+      std::string id = ctx_.shaders().source_id(file);
+      if (std::find(sort_sources_.begin(), sort_sources_.end(), id) == sort_sources_.end()) sort_sources_.push_back(id);
+    }
   }
 
   ResolveSort interval_sort(size_t i) const {
@@ -443,6 +464,7 @@ class ExactCase final : public OitCase {
   unsigned max_frags_ = 0;
   int overflow_rerenders_ = 0, intervals_run_ = 0;
   std::vector<double> capture_ms_, count_ms_;  // PPPA: count_ms_ is the count pass + prefix sum
+  std::vector<std::string> sort_sources_;      // ShaderLibrary::source_id of each library sort file run
   HostLists host_;
   std::vector<float> native_out_;
 };

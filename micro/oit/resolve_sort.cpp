@@ -35,6 +35,7 @@ Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block) {
     d.push_back({"SORT_IS", ""});
   } else if (sort == ResolveSort::IMS) {
     d.push_back({"SORT_IMS", ""});
+    d.push_back({"SORT_MERGE_HALF_SCRATCH", ""});  // Knowles 2013's merge (shaders/sorts/merge.glsl)
   } else {
     unsigned m = std::min(block, max_frags);
     d.push_back({sort == ResolveSort::RBS_L ? "SORT_RBS" : "SORT_RBS_G", ""});
@@ -42,6 +43,18 @@ Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block) {
     d.push_back({"MAX_K", std::to_string((max_frags + m - 1) / m)});
   }
   return d;
+}
+
+std::vector<std::string> sort_files(ResolveSort sort, unsigned max_frags) {
+  switch (sort) {
+    case ResolveSort::IS: return {"sorts/insertion.glsl"};
+    case ResolveSort::IMS:
+      if (max_frags > 32) return {"sorts/insertion.glsl", "sorts/merge.glsl"};
+      return {"sorts/insertion.glsl"};
+    case ResolveSort::RBS_L:
+    case ResolveSort::RBS_G: return {"sorts/register_sort.glsl"};
+  }
+  return {};
 }
 
 }  // namespace oitbench::oit

@@ -44,8 +44,8 @@ SORT_T new_element(int pixel, int round) {
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  int pixel = sort_pixel_index(p);
-  sort_load(p);
+  int pixel = frags_pixel_index(p);
+  frags_load(p);
   // `repeat` is a uniform: this loop stays a loop, only the insertion inside may unroll.
   for (int round = 0; round < repeat; ++round) {
     SORT_T e = new_element(pixel, round);
@@ -55,6 +55,6 @@ void main() {
 #ifdef OITBENCH_FAULT_WRONG_RESULT
   if (p == ivec2(1, 1)) SORT_AT(SORT_N - 1).y ^= 1u;  // one payload off: the validator must notice
 #endif
-  sort_store(p);
+  frags_store(p);
   first_payload = SORT_AT(0).y + uint(oitbench_fault_hang(zero));
 }

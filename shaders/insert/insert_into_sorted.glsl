@@ -3,6 +3,10 @@
 //   insert_early_out     Listing 4.8: swap, stop at the first pair in order
 //   insert_no_early_out  Listing 4.9: swap where out of order, never stop
 //   insert_two_moves     Listing A.1: two moves instead of a swap (the new element is known), never stop
+// Written against the sort library's element API (shaders/sorts/api.glsl), bound to the pixel's
+// array by the sort experiment's binding (shaders/sort/frags.glsl). These are insertion steps into
+// an array already sorted, not sorts, so they live with their experiment.
+#include "../sorts/api.glsl"
 #include "../sort/frags.glsl"
 
 void insert_early_out(SORT_T e) {

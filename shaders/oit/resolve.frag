@@ -1,7 +1,7 @@
-// The exact-OIT resolve as a fragment shader, written once against the storage API (the sorts are
-// in resolve_pixel.glsl). Drawn as a full-screen triangle with additive blending onto a cleared
-// target: rgb is the composited colour, alpha counts how often the pixel was resolved (BMA must
-// resolve each covered pixel exactly once).
+// The exact-OIT resolve as a fragment shader, written once against the storage API (the sorts:
+// resolve_pixel.glsl, from the library in shaders/sorts/). Drawn as a full-screen triangle with
+// additive blending onto a cleared target: rgb is the composited colour, alpha counts how often
+// the pixel was resolved (BMA must resolve each covered pixel exactly once).
 #include "../common/oitbench.glsl"
 #include "storage/fragments.glsl"
 

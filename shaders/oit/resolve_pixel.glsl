@@ -1,11 +1,18 @@
 // resolve_pixel(head): the exact-OIT resolve of one pixel, shared by the fragment-shader resolve
 // (resolve.frag) and the compute one (resolve.comp): load the pixel's list, sort it far-to-near
-// with the sort the variant names, blend back to front with "over" onto `background`.
-//   SORT_IS:    insertion sort in a local array of MAX_FRAGS       (BASE-IS, BMA-IS, CS-IS)
-//   SORT_IMS:   insertion up to 32 fragments, merge sort above      (BASE-IMS, BMA-IMS, CS-IMS)
-//   SORT_RBS:   register-based block sort, blocks of RBS_M, MAX_K blocks merged from local memory
+// with the sort the variant names, blend back to front with "over" onto `background`. The sorts
+// are the library's (shaders/sorts/), the same files the sort experiment times:
+//   SORT_IS:    insertion sort (sorts/insertion.glsl) in a local array of MAX_FRAGS
+//               (BASE-IS, BMA-IS, CS-IS)
+//   SORT_IMS:   insertion up to 32 fragments, merge sort above (sorts/merge.glsl, its
+//               SORT_MERGE_HALF_SCRATCH form, injected by micro/oit/resolve_sort.cpp)
+//               (BASE-IMS, BMA-IMS, CS-IMS)
+//   SORT_RBS:   register-based block sort, blocks of RBS_M sorted by the RS network
+//               (sorts/register_sort.glsl), MAX_K blocks merged from local memory (rbs.glsl)
 //               (BASE-RBS-L, BMA-RBS-L, CS-RBS-L)
-//   SORT_RBS_G: the same blocks sorted in place in the list's nodes, merged from global memory (RBS-G)
+//   SORT_RBS_G: the same blocks sorted in place in the list's nodes, merged from global memory
+//               (rbs.glsl) (RBS-G)
+// micro/oit/resolve_sort.cpp names the same files for the `sort_source` column.
 // Expects: a storage include, `uniform vec3 background`.
 
 vec3 blend_over(vec3 c, uvec2 frag) {
@@ -13,21 +20,30 @@ vec3 blend_over(vec3 c, uvec2 frag) {
   return mix(c, k.rgb, k.a);
 }
 
+// The binding of the sort library's element API (shaders/sorts/api.glsl): fragments far to near.
+// An element belongs after another when the other is farther; equal depths are ordered by colour
+// (FRAG_FARTHER), so the result never depends on the order the fragments were stored in. The
+// array, its size and the loop bound are each variant's (rbs.glsl binds RS to its registers).
 // The shader library expands each include once, at its first #include, whatever the #if around
-// it: the register half both RBS variants share must come first, under a condition true for both.
-#if defined(SORT_RBS) || defined(SORT_RBS_G)
-#include "sorts/register_sort.glsl"
-#endif
+// it: the API comes first, unconditionally.
+#include "../sorts/api.glsl"
+#define SORT_T uvec2
+#define SORT_GT(a, b) FRAG_FARTHER(b, a)
 
-#if defined(SORT_RBS)
-#include "sorts/register_block.glsl"
-#elif defined(SORT_RBS_G)
-#include "sorts/register_block_global.glsl"
+#if defined(SORT_RBS) || defined(SORT_RBS_G)
+#include "rbs.glsl"
 #elif defined(SORT_IS) || defined(SORT_IMS)
 uvec2 frags[MAX_FRAGS];
-#include "sorts/insertion.glsl"
+int frag_count;  // the pixel's fragments: a run-time loop bound, so the sorts work in local memory
+#define SORT_N MAX_FRAGS
+#define SORT_SIZE frag_count
+#define SORT_AT(i) frags[i]
+#include "../sorts/insertion.glsl"
+#if defined(SORT_IMS) && !defined(SORT_MERGE_HALF_SCRATCH)
+#error "IMS merges in Knowles 2013's form: inject SORT_MERGE_HALF_SCRATCH (micro/oit/resolve_sort.cpp)"
+#endif
 #if defined(SORT_IMS) && MAX_FRAGS > 32
-#include "sorts/merge.glsl"
+#include "../sorts/merge.glsl"
 #endif
 vec3 resolve_pixel(uint node) {
   int n = 0;
@@ -35,11 +51,12 @@ vec3 resolve_pixel(uint node) {
     frags[n++] = FRAG_LOAD(node);
     node = FRAG_NEXT(node);
   }
+  frag_count = n;
 #if defined(SORT_IMS) && MAX_FRAGS > 32
-  if (n > 32) sort_merge(n);
+  if (n > 32) sort_merge();
   else
 #endif
-  sort_insertion(n);
+  sort_insertion();
   vec3 c = background;
   for (int i = 0; i < n; ++i) c = blend_over(c, frags[i]);
   return c;

@@ -1,41 +1,42 @@
-// Every sort, one file each. The case injects SORT_USE_<NAME>; only that file is compiled, so
-// compile_ms is the chosen sort's own (the unrolled networks are costly to parse). Each file defines
-// its sort function and names it SORT_ALGORITHM. Adding a sort: write shaders/sort/<name>.glsl
-// against frags.glsl's API, add it here and to the table in micro/experiments/sort.cpp.
+// The sort experiment's choice of sort: the case injects SORT_USE_<FILE> (and the file's variant
+// defines, see the variant table in micro/experiments/sort.cpp); only that library file of
+// shaders/sorts/ is compiled, so compile_ms is the chosen sort's own (the unrolled networks are
+// costly to parse). SORT_ALGORITHM() is the call that sorts the pixel's frags.glsl array.
+// Adding a sort: write shaders/sorts/<name>.glsl against shaders/sorts/api.glsl, add it here and
+// to the table in micro/experiments/sort.cpp (which names the same file for `sort_source`).
 //
 // Shared includes come first and unconditionally: the assembler emits a file once, where it is
 // first included, so a dependency first met inside a skipped #if block would be lost.
 #include "frags.glsl"
-#include "unroll.glsl"
-#include "shell_gaps.glsl"
+#include "../sorts/api.glsl"
+#include "../sorts/unroll.glsl"
 
-#if defined(SORT_USE_INSERTION_NAIVE)
-#include "insertion_naive.glsl"
-#endif
-#if defined(SORT_USE_INSERTION_V1)
-#include "insertion_v1.glsl"
-#endif
-#if defined(SORT_USE_INSERTION_V2)
-#include "insertion_v2.glsl"
+#if defined(SORT_USE_INSERTION)
+#include "../sorts/insertion.glsl"
+#define SORT_ALGORITHM() sort_insertion()
 #endif
 #if defined(SORT_USE_BUBBLE)
-#include "bubble.glsl"
+#include "../sorts/bubble.glsl"
+#define SORT_ALGORITHM() sort_bubble()
 #endif
 #if defined(SORT_USE_SHELL)
-#include "shell.glsl"
-#endif
-#if defined(SORT_USE_SHELL_REGISTER)
-#include "shell_register.glsl"
+#include "../sorts/shell.glsl"
+#define SORT_ALGORITHM() sort_shell()
 #endif
 #if defined(SORT_USE_MERGE)
-#include "merge.glsl"
+#include "../sorts/merge.glsl"
+#define SORT_ALGORITHM() sort_merge()
 #endif
 #if defined(SORT_USE_BITONIC)
-#include "bitonic.glsl"
+#include "../sorts/bitonic.glsl"
+#define SORT_ALGORITHM() sort_bitonic()
 #endif
 #if defined(SORT_USE_ODD_EVEN_MERGE)
-#include "odd_even_merge.glsl"
+#include "../sorts/odd_even_merge.glsl"
+#define SORT_ALGORITHM() sort_odd_even_merge()
 #endif
-#if defined(SORT_USE_RBS)
-#include "rbs.glsl"
+#if defined(SORT_USE_REGISTER_SORT)
+// RS shrinks its network to the `count` uniform (== SORT_N), as a resolve does to a block's fragments.
+#include "../sorts/register_sort.glsl"
+#define SORT_ALGORITHM() sort_register(count)
 #endif

@@ -1,30 +1,26 @@
-// The per-pixel fragment array every sort and insertion is written against, and the only place
-// that knows where it lives. A fragment is 64 bits as in Knowles 2014 and Brüll 2018: x = the
-// 32-bit depth key (float bits), y = RGBA8 colour packed into 32 bits.
+// The sort experiment's binding of the sort library's element API (shaders/sorts/api.glsl) to the
+// per-pixel fragment array, and the only place that knows where that array lives. It holds no
+// sort: algorithms.glsl picks one from shaders/sorts/. A fragment is 64 bits as in Knowles 2014 and
+// Brüll 2018: x = the 32-bit depth key (float bits), y = RGBA8 colour packed into 32 bits; the
+// order is ascending depth key (SORT_GT: a's key > b's key; equal keys are ties).
+// The insert experiment (shaders/insert/) uses the same binding.
 //
 // Injected defines:
 //   SORT_N            elements per pixel (the array's declared size)
 //   SORT_N_LOG2       ceil(log2(SORT_N)), for the power-of-two networks
-//   MEMORY_REGISTERS  loop bounds are the constant SORT_N: loops unroll, every index becomes a
+//   MEMORY_REGISTERS  SORT_SIZE is the constant SORT_N: loops unroll, every index becomes a
 //                     constant and the compiler may keep `frags` in registers (Knowles 2014 Listing 2, right)
-//   MEMORY_LOCAL      loop bounds are the uniform `count` (== SORT_N, unknown to the compiler): loops
+//   MEMORY_LOCAL      SORT_SIZE is the uniform `count` (== SORT_N, unknown to the compiler): loops
 //                     stay loops, indices stay dynamic and `frags` must live in indexable local memory
 //                     (Listing 2, left) - the way a resolve with a per-pixel fragment count is written
-//
-// The API the algorithms use (never `frags` or `count` directly):
-//   SORT_T                  the element type
-//   SORT_AT(i)              element i, an lvalue
-//   SORT_KEY(v)             the sort key of an element value (float depth)
-//   SORT_GT(a, b)           key(a) > key(b), for element values
-//   SORT_GREATER(i, j)      key at i > key at j
-//   SORT_SWAP(i, j)         exchange elements i and j
-//   SORT_SIZE, SORT_SIZE_LOG2   loop bounds (constant or uniform, see above)
 #ifndef SORT_FRAGS_GLSL
 #define SORT_FRAGS_GLSL
 
 #if !defined(SORT_N) || !defined(SORT_N_LOG2)
 #error "define SORT_N and SORT_N_LOG2"
 #endif
+
+#include "../sorts/api.glsl"
 
 layout(std430, binding = 0) readonly buffer InFrags { uvec2 in_frags[]; };
 layout(std430, binding = 1) writeonly buffer OutFrags { uvec2 out_frags[]; };
@@ -41,13 +37,6 @@ SORT_T frags[SORT_N];
 #define SORT_AT(i) frags[i]
 #define SORT_KEY(v) uintBitsToFloat((v).x)
 #define SORT_GT(a, b) (SORT_KEY(a) > SORT_KEY(b))
-#define SORT_GREATER(i, j) SORT_GT(frags[i], frags[j])
-#define SORT_SWAP(i, j)      \
-  {                          \
-    SORT_T sort_tmp_ = frags[i]; \
-    frags[i] = frags[j];     \
-    frags[j] = sort_tmp_;    \
-  }
 
 #if defined(MEMORY_REGISTERS)
 #define SORT_SIZE SORT_N
@@ -59,15 +48,18 @@ SORT_T frags[SORT_N];
 #error "define MEMORY_REGISTERS or MEMORY_LOCAL"
 #endif
 
-int sort_pixel_index(ivec2 p) { return p.y * image_size.x + p.x; }
+// After SORT_N, before any sort: SORT_EACH_INDEX for insertion's Table A.1 writes.
+#include "../sorts/unroll.glsl"
 
-void sort_load(ivec2 p) {
-  int base = sort_pixel_index(p) * SORT_N;
+int frags_pixel_index(ivec2 p) { return p.y * image_size.x + p.x; }
+
+void frags_load(ivec2 p) {
+  int base = frags_pixel_index(p) * SORT_N;
   for (int i = 0; i < SORT_SIZE; ++i) SORT_AT(i) = in_frags[base + i];
 }
 
-void sort_store(ivec2 p) {
-  int base = sort_pixel_index(p) * SORT_N;
+void frags_store(ivec2 p) {
+  int base = frags_pixel_index(p) * SORT_N;
   for (int i = 0; i < SORT_SIZE; ++i) out_frags[base + i] = SORT_AT(i);
 }
 

@@ -6,6 +6,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, image_size))) return;
-  sort_pixel(p);
+  process_pixel(p);
   if (oitbench_fault_hang(zero) != 0.0) out_frags[0] = uvec2(0u);
 }

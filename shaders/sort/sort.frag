@@ -5,6 +5,6 @@ layout(location = 0) out uint first_payload;
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  sort_pixel(p);
+  process_pixel(p);
   first_payload = SORT_AT(0).y + uint(oitbench_fault_hang(zero));
 }

@@ -4,29 +4,35 @@
 // the colour stays as it was, so with or without the stencil mask the image is the same; the mask
 // only skips the invocations.
 //   RESOLVE_BLEND: nodes in storage order (MLAB's array is kept sorted: Table A.4)
-//   RESOLVE_SORT:  insertion sort by depth first (UMLAB stores unsorted: Table A.5)
+//   RESOLVE_SORT:  insertion sort by depth first (UMLAB stores unsorted: Table A.5): the sort
+//                  library's shaders/sorts/insertion.glsl (Listing 4.11, the direct write), bound
+//                  here to the nodes, ascending by their depth key .y, in registers (constant bounds)
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
+#include "../sorts/api.glsl"
 
 uniform int zero;  // always 0; unknown to the compiler
 layout(location = 0) out vec4 fragColour;
 
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
-  uvec2 nodes[STORAGE_NODES];
-  for (int i = 0; i < STORAGE_NODES; ++i) nodes[i] = STORAGE_LOAD(p, i);
+// A global, so the library's sort can name it (the binding of shaders/sorts/api.glsl).
+uvec2 nodes[STORAGE_NODES];
+
 #if defined(RESOLVE_SORT)
-  for (int i = 1; i < STORAGE_NODES; ++i) {
-    uvec2 key = nodes[i];
-    int j = i - 1;
-    while (j >= 0 && nodes[j].y > key.y) {
-      nodes[j + 1] = nodes[j];
-      --j;
-    }
-    nodes[j + 1] = key;
-  }
+#define SORT_T uvec2
+#define SORT_AT(i) nodes[i]
+#define SORT_GT(a, b) ((a).y > (b).y)
+#define SORT_N STORAGE_NODES
+#define SORT_SIZE STORAGE_NODES
+#include "../sorts/insertion.glsl"
 #elif !defined(RESOLVE_BLEND)
 #error "define RESOLVE_BLEND or RESOLVE_SORT"
+#endif
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  for (int i = 0; i < STORAGE_NODES; ++i) nodes[i] = STORAGE_LOAD(p, i);
+#if defined(RESOLVE_SORT)
+  sort_insertion();
 #endif
   vec3 colour = vec3(0.0);
   float transmittance = 1.0;

@@ -32,6 +32,16 @@ TEST_F(ShaderAssembly, PreambleDefinesIncludesAndLineMarkers) {
   EXPECT_NE(src.text.find("#line 3 1\nvoid main() {}"), std::string::npos) << src.text;
 }
 
+// FNV-1a 32-bit of the file's bytes: "" -> 811c9dc5, "a" -> e40c292c (the published test vectors).
+TEST_F(ShaderAssembly, SourceIdIsThePathAndTheFnv1aOfTheBytes) {
+  std::ofstream(root / "empty.glsl", std::ios::binary);
+  std::ofstream(root / "a" / "one.glsl", std::ios::binary) << "a";
+  ShaderLibrary lib(root);
+  EXPECT_EQ(lib.source_id("empty.glsl"), "empty.glsl@811c9dc5");
+  EXPECT_EQ(lib.source_id("a/one.glsl"), "a/one.glsl@e40c292c");
+  EXPECT_THROW(lib.source_id("a/missing.glsl"), ShaderError);
+}
+
 TEST_F(ShaderAssembly, MapsMesaAndNvidiaLogsToFileAndLine) {
   ShaderLibrary lib(root);
   auto src = lib.assemble("a/main.frag", {});

@@ -1,17 +1,19 @@
-// Register-based sort (RS) of Knowles 2014, Listing 5: insertion sort unrolled by hand into an
-// insertion network with explicit branching. Outer conditionals (`count > j`) shrink the network
-// to the pixel's fragment count; inner conditionals stop an insertion once the element is in place
-// (the early exit). Every index is a literal, so the array needs no dynamic indexing: there is no
-// local-memory form. RBS proper sorts blocks of MAX_REGISTERS = 32 with RS and k-way merges them;
-// for n <= 32 there is one block and RBS is RS.
+// RS, the register sort of Knowles 2014's register-based block sort (RBS), Listing 5: insertion
+// sort unrolled by hand into an insertion network with explicit branching. Every index is a
+// literal, so the array needs no dynamic indexing and may stay in registers: there is no
+// local-memory form. Outer conditionals (`n > j`) shrink the network to the n elements present at
+// run time (n <= SORT_N, the network's size); inner conditionals stop an insertion once the element
+// is in place (the early exit). RBS sorts blocks of up to 32 with RS and k-way merges the blocks;
+// for up to 32 elements there is one block and RBS is RS.
+//   the sort experiment (`rbs`):  n = its `count` uniform, on its SORT_N elements
+//   the oit resolves (RBS-L, RBS-G: shaders/oit/rbs.glsl):  n = the block's fragments, on the
+//                                 resolve's `registers` block (SORT_N = RBS_M)
 //
 // RBS_INSERT_j moves element j down until it is in place: a nest of j compare-and-swaps.
-#include "frags.glsl"
-
-#define SORT_ALGORITHM sort_rbs
+#include "api.glsl"
 
 #if SORT_N > 32
-#error "RS sorts one block of at most 32 fragments"
+#error "RS sorts one block of at most 32 elements"
 #endif
 
 #define RBS_INSERT_1 if (SORT_GREATER(0, 1)) SORT_SWAP(0, 1)
@@ -46,98 +48,98 @@
 #define RBS_INSERT_30 if (SORT_GREATER(29, 30)) { SORT_SWAP(29, 30) RBS_INSERT_29 }
 #define RBS_INSERT_31 if (SORT_GREATER(30, 31)) { SORT_SWAP(30, 31) RBS_INSERT_30 }
 
-void sort_rbs() {
+void sort_register(int n) {
 #if SORT_N > 1
-  if (count > 1) { RBS_INSERT_1 }
+  if (n > 1) { RBS_INSERT_1 }
 #endif
 #if SORT_N > 2
-  if (count > 2) { RBS_INSERT_2 }
+  if (n > 2) { RBS_INSERT_2 }
 #endif
 #if SORT_N > 3
-  if (count > 3) { RBS_INSERT_3 }
+  if (n > 3) { RBS_INSERT_3 }
 #endif
 #if SORT_N > 4
-  if (count > 4) { RBS_INSERT_4 }
+  if (n > 4) { RBS_INSERT_4 }
 #endif
 #if SORT_N > 5
-  if (count > 5) { RBS_INSERT_5 }
+  if (n > 5) { RBS_INSERT_5 }
 #endif
 #if SORT_N > 6
-  if (count > 6) { RBS_INSERT_6 }
+  if (n > 6) { RBS_INSERT_6 }
 #endif
 #if SORT_N > 7
-  if (count > 7) { RBS_INSERT_7 }
+  if (n > 7) { RBS_INSERT_7 }
 #endif
 #if SORT_N > 8
-  if (count > 8) { RBS_INSERT_8 }
+  if (n > 8) { RBS_INSERT_8 }
 #endif
 #if SORT_N > 9
-  if (count > 9) { RBS_INSERT_9 }
+  if (n > 9) { RBS_INSERT_9 }
 #endif
 #if SORT_N > 10
-  if (count > 10) { RBS_INSERT_10 }
+  if (n > 10) { RBS_INSERT_10 }
 #endif
 #if SORT_N > 11
-  if (count > 11) { RBS_INSERT_11 }
+  if (n > 11) { RBS_INSERT_11 }
 #endif
 #if SORT_N > 12
-  if (count > 12) { RBS_INSERT_12 }
+  if (n > 12) { RBS_INSERT_12 }
 #endif
 #if SORT_N > 13
-  if (count > 13) { RBS_INSERT_13 }
+  if (n > 13) { RBS_INSERT_13 }
 #endif
 #if SORT_N > 14
-  if (count > 14) { RBS_INSERT_14 }
+  if (n > 14) { RBS_INSERT_14 }
 #endif
 #if SORT_N > 15
-  if (count > 15) { RBS_INSERT_15 }
+  if (n > 15) { RBS_INSERT_15 }
 #endif
 #if SORT_N > 16
-  if (count > 16) { RBS_INSERT_16 }
+  if (n > 16) { RBS_INSERT_16 }
 #endif
 #if SORT_N > 17
-  if (count > 17) { RBS_INSERT_17 }
+  if (n > 17) { RBS_INSERT_17 }
 #endif
 #if SORT_N > 18
-  if (count > 18) { RBS_INSERT_18 }
+  if (n > 18) { RBS_INSERT_18 }
 #endif
 #if SORT_N > 19
-  if (count > 19) { RBS_INSERT_19 }
+  if (n > 19) { RBS_INSERT_19 }
 #endif
 #if SORT_N > 20
-  if (count > 20) { RBS_INSERT_20 }
+  if (n > 20) { RBS_INSERT_20 }
 #endif
 #if SORT_N > 21
-  if (count > 21) { RBS_INSERT_21 }
+  if (n > 21) { RBS_INSERT_21 }
 #endif
 #if SORT_N > 22
-  if (count > 22) { RBS_INSERT_22 }
+  if (n > 22) { RBS_INSERT_22 }
 #endif
 #if SORT_N > 23
-  if (count > 23) { RBS_INSERT_23 }
+  if (n > 23) { RBS_INSERT_23 }
 #endif
 #if SORT_N > 24
-  if (count > 24) { RBS_INSERT_24 }
+  if (n > 24) { RBS_INSERT_24 }
 #endif
 #if SORT_N > 25
-  if (count > 25) { RBS_INSERT_25 }
+  if (n > 25) { RBS_INSERT_25 }
 #endif
 #if SORT_N > 26
-  if (count > 26) { RBS_INSERT_26 }
+  if (n > 26) { RBS_INSERT_26 }
 #endif
 #if SORT_N > 27
-  if (count > 27) { RBS_INSERT_27 }
+  if (n > 27) { RBS_INSERT_27 }
 #endif
 #if SORT_N > 28
-  if (count > 28) { RBS_INSERT_28 }
+  if (n > 28) { RBS_INSERT_28 }
 #endif
 #if SORT_N > 29
-  if (count > 29) { RBS_INSERT_29 }
+  if (n > 29) { RBS_INSERT_29 }
 #endif
 #if SORT_N > 30
-  if (count > 30) { RBS_INSERT_30 }
+  if (n > 30) { RBS_INSERT_30 }
 #endif
 #if SORT_N > 31
-  if (count > 31) { RBS_INSERT_31 }
+  if (n > 31) { RBS_INSERT_31 }
 #endif
 }

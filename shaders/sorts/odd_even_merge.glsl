@@ -1,9 +1,8 @@
 // Batcher's odd-even merge sort network (Knowles 2014, 2.4), the iterative form that works for
-// any size (comparators beyond the end are dropped; all put the smaller key at the lower index).
+// any size (comparators beyond the end are dropped; all put the element that belongs first at the
+// lower index).
 // Loops count in log2 so the unroller sees additive bounds.
-#include "frags.glsl"
-
-#define SORT_ALGORITHM sort_odd_even_merge
+#include "api.glsl"
 
 void sort_odd_even_merge() {
   for (int log_p = 0; log_p < SORT_SIZE_LOG2; ++log_p) {

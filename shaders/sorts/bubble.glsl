@@ -1,8 +1,6 @@
 // Bubble sort, Brüll 2018 Listing 4.10. SORT_BUBBLE_EARLY_OUT keeps line 11 (stop after a pass
 // without swaps); without it every pass runs (Table A.3 compares the two).
-#include "frags.glsl"
-
-#define SORT_ALGORITHM sort_bubble
+#include "api.glsl"
 
 void sort_bubble() {
   for (int n = SORT_SIZE; n > 1; --n) {

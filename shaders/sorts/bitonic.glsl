@@ -1,10 +1,8 @@
-// Bitonic sort network (Knowles 2014, 2.4), in the form whose comparators all put the smaller key
-// at the lower index: the first step of each merge compares i with i ^ (k - 1), the rest with
-// i ^ j. Comparators reaching past the end are dropped, which equals padding with +inf keys to the
+// Bitonic sort network (Knowles 2014, 2.4), in the form whose comparators all put the element
+// that belongs first at the lower index: the first step of each merge compares i with i ^ (k - 1), the rest with
+// i ^ j. Comparators reaching past the end are dropped, which equals padding with elements that belong last to the
 // next power of two, so any size works. Loops count in log2 so the unroller sees additive bounds.
-#include "frags.glsl"
-
-#define SORT_ALGORITHM sort_bitonic
+#include "api.glsl"
 
 void sort_bitonic() {
   for (int log_k = 1; log_k <= SORT_SIZE_LOG2; ++log_k) {

@@ -1,12 +1,15 @@
 // SORT_EACH_INDEX(M) expands to M(0) M(1) ... M(SORT_N - 1): straight-line code with constant
-// indices for any SORT_N up to 32, without token pasting (which GLSL does not promise).
-#ifndef SORT_UNROLL_GLSL
-#define SORT_UNROLL_GLSL
+// indices for any SORT_N up to 32, without token pasting (which GLSL does not promise). The
+// expansion is fixed when this file is included, so SORT_N must be bound before; for SORT_N > 32
+// SORT_EACH_INDEX is left undefined (a sort that needs it says so with an #error).
+#ifndef SORTS_UNROLL_GLSL
+#define SORTS_UNROLL_GLSL
 
-#if SORT_N > 32
-#error "SORT_EACH_INDEX covers SORT_N <= 32"
+#ifndef SORT_N
+#error "bind SORT_N (sorts/api.glsl) before including sorts/unroll.glsl"
 #endif
 
+#if SORT_N <= 32
 #if SORT_N > 0
 #define SORT_EACH_0(M) M(0)
 #else
@@ -173,5 +176,6 @@
   SORT_EACH_8(M) SORT_EACH_9(M) SORT_EACH_10(M) SORT_EACH_11(M) SORT_EACH_12(M) SORT_EACH_13(M) SORT_EACH_14(M) SORT_EACH_15(M) \
   SORT_EACH_16(M) SORT_EACH_17(M) SORT_EACH_18(M) SORT_EACH_19(M) SORT_EACH_20(M) SORT_EACH_21(M) SORT_EACH_22(M) SORT_EACH_23(M) \
   SORT_EACH_24(M) SORT_EACH_25(M) SORT_EACH_26(M) SORT_EACH_27(M) SORT_EACH_28(M) SORT_EACH_29(M) SORT_EACH_30(M) SORT_EACH_31(M)
+#endif
 
 #endif

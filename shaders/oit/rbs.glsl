@@ -1,0 +1,135 @@
+// The register-based block sort of the oit resolves, RBS-L and RBS-G (Knowles 2014, listings 3-6),
+// composed from the library's RS network (shaders/sorts/register_sort.glsl, the same file the sort
+// experiment's `rbs` times) and this resolve's own parts, which stay here because they are
+// written against the fragment storage API and blend while they merge, not against the sort
+// library's element API: load_block() reads up to RBS_M fragments of the list into `registers`,
+// the network sorts them there (this file binds the library's SORT_AT to `registers`), and the
+// k-way merge of listing 6 blends the blocks far to near.
+//   SORT_RBS    RBS-L: each sorted block is written to a local array of MAX_FRAGS and the MAX_K
+//               blocks are merged from there. A pixel that fits one block (MAX_K == 1) never
+//               touches local memory.
+//   SORT_RBS_G  RBS-G (Knowles 2014, section 3): each sorted block is written back in place into
+//               the list's own nodes in global memory (the nodes it was read from, in list order)
+//               and the merge reads its candidates from there. No MAX_FRAGS-sized local array, so
+//               nothing here limits occupancy and BMA is not needed; the price is a second pass
+//               over every node in global memory (write and re-read). After the resolve each
+//               pixel's list holds sorted runs of RBS_M: the same fragments, so the CPU reference
+//               (which sorts for itself) still applies.
+// Expects (resolve_pixel.glsl): sorts/api.glsl and SORT_T / SORT_GT bound, RBS_M (<= 32), MAX_K
+// (MAX_FRAGS = RBS_M * MAX_K), blend_over(vec3, uvec2), background, the storage API (RBS-G: with
+// FRAG_STORE).
+#pragma optionNV(unroll all)
+
+// The binding of the library's API for RS: the block in registers, every index a constant.
+uvec2 registers[RBS_M];
+#define SORT_N RBS_M
+#define SORT_SIZE RBS_M
+#define SORT_AT(i) registers[i]
+#include "../sorts/unroll.glsl"
+#include "../sorts/register_sort.glsl"
+
+#if !defined(SORT_EACH_INDEX)
+#error "RBS_M must be at most 32"
+#endif
+
+// Reads up to RBS_M fragments of the list from `node` into registers; returns how many.
+#define RBS_LOAD(i) if (FRAG_VALID(node)) { registers[i] = FRAG_LOAD(node); node = FRAG_NEXT(node); m = (i) + 1; }
+int load_block(inout uint node) {
+  int m = 0;
+  SORT_EACH_INDEX(RBS_LOAD)
+  return m;
+}
+
+#if defined(SORT_RBS) && MAX_K == 1
+vec3 resolve_pixel(uint node) {
+  int m = load_block(node);
+  sort_register(m);
+  vec3 c = background;
+#define RBS_BLEND(i) if ((i) < m) c = blend_over(c, registers[i]);
+  SORT_EACH_INDEX(RBS_BLEND)
+  return c;
+}
+#elif defined(SORT_RBS)
+uvec2 frags[MAX_FRAGS];  // the sorted blocks (local memory)
+
+vec3 resolve_pixel(uint node) {
+  int n = 0, k = 0;
+  while (FRAG_VALID(node) && k < MAX_K) {
+    int m = load_block(node);
+    sort_register(m);
+#define RBS_STORE(i) if ((i) < m) frags[k * RBS_M + (i)] = registers[i];
+    SORT_EACH_INDEX(RBS_STORE)
+    n += m;
+    ++k;
+  }
+  // k-way merge: the candidate (deepest remaining fragment) of each block stays in a register.
+  uvec2 candidate[MAX_K];
+  int blockIdx[MAX_K], blockEnd[MAX_K];
+  for (int j = 0; j < MAX_K; ++j) {
+    blockIdx[j] = j * RBS_M;
+    blockEnd[j] = j < k ? min((j + 1) * RBS_M, n) : blockIdx[j];
+    if (j < k) candidate[j] = frags[blockIdx[j]];
+  }
+  vec3 c = background;
+  for (int f = 0; f < n; ++f) {
+    int b = -1;
+    uvec2 best = uvec2(0u);
+    for (int j = 0; j < MAX_K; ++j)
+      if (blockIdx[j] < blockEnd[j] && (b < 0 || FRAG_FARTHER(candidate[j], best))) {  // ties by colour, as everywhere
+        b = j;
+        best = candidate[j];
+      }
+    for (int j = 0; j < MAX_K; ++j)
+      if (j == b) {
+        c = blend_over(c, candidate[j]);
+        ++blockIdx[j];
+        if (blockIdx[j] < blockEnd[j]) candidate[j] = frags[blockIdx[j]];
+      }
+  }
+  return c;
+}
+#elif defined(SORT_RBS_G)
+#define RBS_WRITE_BACK(i) if ((i) < m) { FRAG_STORE(dst, registers[i]); dst = FRAG_NEXT(dst); }
+
+vec3 resolve_pixel(uint node) {
+  uint blockHead[MAX_K];  // each sorted block's next unmerged node in global memory
+  int blockLeft[MAX_K];   // and how many of its fragments are not merged yet
+  int n = 0, k = 0;
+  while (FRAG_VALID(node) && k < MAX_K) {
+    uint start = node;
+    uint dst = node;
+    int m = load_block(node);
+    sort_register(m);
+    SORT_EACH_INDEX(RBS_WRITE_BACK)
+    blockHead[k] = start;
+    blockLeft[k] = m;
+    n += m;
+    ++k;
+  }
+  // k-way merge (listing 6): the candidate (deepest unmerged fragment) of each block in a register.
+  uvec2 candidate[MAX_K];
+  for (int j = 0; j < MAX_K; ++j)
+    if (j < k) candidate[j] = FRAG_LOAD(blockHead[j]);
+  vec3 c = background;
+  for (int f = 0; f < n; ++f) {
+    int b = -1;
+    uvec2 best = uvec2(0u);
+    for (int j = 0; j < MAX_K; ++j)
+      if (j < k && blockLeft[j] > 0 && (b < 0 || FRAG_FARTHER(candidate[j], best))) {  // ties by colour, as everywhere
+        b = j;
+        best = candidate[j];
+      }
+    for (int j = 0; j < MAX_K; ++j)
+      if (j == b) {
+        c = blend_over(c, candidate[j]);
+        if (--blockLeft[j] > 0) {
+          blockHead[j] = FRAG_NEXT(blockHead[j]);
+          candidate[j] = FRAG_LOAD(blockHead[j]);
+        }
+      }
+  }
+  return c;
+}
+#else
+#error "rbs.glsl is for SORT_RBS or SORT_RBS_G"
+#endif
