@@ -5,12 +5,12 @@
 #include <filesystem>
 #include <iostream>
 
-#include "experiments/experiments.hpp"
 #include "app/commands.hpp"
 #include "backends/drivers.hpp"
 #include "core/csv.hpp"
 #include "core/presets.hpp"
 #include "core/runner.hpp"
+#include "experiments/experiments.hpp"
 #include "viewer/viewer.hpp"
 
 namespace oitbench {
@@ -34,9 +34,10 @@ int run_cli(int argc, char** argv) {
     return 1;
   }
 
-  CLI::App app{"oitbench: GPU microbenchmarks and occupancy studies for order-independent transparency.\n"
-               "Runs isolated GL experiments headless (EGL surfaceless by default, Mesa llvmpipe or a real\n"
-               "driver), validates every case against a CPU reference and writes tidy CSV."};
+  CLI::App app{
+      "oitbench: GPU microbenchmarks and occupancy studies for order-independent transparency.\n"
+      "Runs isolated GL experiments headless (EGL surfaceless by default, Mesa llvmpipe or a real\n"
+      "driver), validates every case against a CPU reference and writes tidy CSV."};
   app.footer(std::string("Examples:\n"
                          "  oitbench list\n"
                          "  oitbench info --backend egl-device\n"
@@ -60,7 +61,8 @@ int run_cli(int argc, char** argv) {
   auto add_backend = [&](CLI::App* cmd) {
     cmd->add_option("--backend", copt.backend, "Context backend: egl (surfaceless, default), egl-device, osmesa, glfw")
         ->check(CLI::IsMember(compiled_backends()));
-    cmd->add_option("--device", copt.device, "EGL device index for --backend egl-device (see info)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--device", copt.device, "EGL device index for --backend egl-device (see info)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--gl-debug", copt.debug, "Print KHR_debug messages to stderr");
     cmd->add_option("--driver", driver,
                     "GL driver: default (what the loader gives), llvmpipe, zink (GL on Vulkan on lavapipe), softpipe, "
@@ -83,17 +85,20 @@ int run_cli(int argc, char** argv) {
   RunOptions& ropt = rc.options;
   ropt.shader_root = default_shader_root();
   run->add_option("experiments", rc.experiments, "Experiment names, or 'all' (see: oitbench list)");
-  run->add_option("--set", rc.sets, "NAME=V1,V2,... (integer ranges A..B or A..B:STEP); repeatable. A parameter "
-                                    "scoped to some techniques or variants must apply to at least one selected case")
+  run->add_option("--set", rc.sets,
+                  "NAME=V1,V2,... (integer ranges A..B or A..B:STEP); repeatable. A parameter "
+                  "scoped to some techniques or variants must apply to at least one selected case")
       ->take_all();
   run->add_option("--preset", rc.preset, "Run a named grid from presets/ (see: oitbench list --presets)");
   run->add_option("--resolution", rc.resolution, "Render target WIDTHxHEIGHT (default: each experiment's own)");
-  run->add_option("--reps", ropt.reps, "Timed repetitions per case (default 5; --quick 3)")->check(CLI::Range(1, 100000));
+  run->add_option("--reps", ropt.reps, "Timed repetitions per case (default 5; --quick 3)")
+      ->check(CLI::Range(1, 100000));
   run->add_option("--warmup", ropt.warmup, "Untimed repetitions first (default 1)")->check(CLI::Range(0, 1000));
   run->add_flag("--quick", ropt.quick, "Each experiment's small grid and resolution: finishes in seconds");
   run->add_option("--out,-o", ropt.out, "CSV file (appends when the header matches; '-' = stdout)");
   run->add_option("--raw", ropt.raw, "Also write every repetition (one row per sample) to this CSV");
-  run->add_option("--timer", ropt.timer, "Primary clock: auto (CPU on software renderers, GPU queries elsewhere), cpu, gpu")
+  run->add_option("--timer", ropt.timer,
+                  "Primary clock: auto (CPU on software renderers, GPU queries elsewhere), cpu, gpu")
       ->check(CLI::IsMember({"auto", "cpu", "gpu"}));
   bool no_interleave = false, no_progress = false, no_program_cache = false;
   run->add_flag("--sync-passes", ropt.sync_passes,
@@ -102,8 +107,10 @@ int run_cli(int argc, char** argv) {
   run->add_flag("--no-program-cache", no_program_cache,
                 "Compile every program from source (to measure compile time); default: reuse linked programs "
                 "from ~/.cache/oitbench/programs (glGetProgramBinary, keyed on sources, defines and driver)");
-  run->add_flag("--no-interleave", no_interleave, "Run each case's repetitions back to back (default: A B C A B C ...)");
-  run->add_option("--isolate", ropt.isolate, "Run cases in child processes under the watchdog: auto (hang-prone experiments), always, never")
+  run->add_flag("--no-interleave", no_interleave,
+                "Run each case's repetitions back to back (default: A B C A B C ...)");
+  run->add_option("--isolate", ropt.isolate,
+                  "Run cases in child processes under the watchdog: auto (hang-prone experiments), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
   run->add_option("--timeout", ropt.timeout_s, "Watchdog: seconds a case may take before it is killed (status timeout)")
       ->check(CLI::PositiveNumber);
@@ -113,37 +120,45 @@ int run_cli(int argc, char** argv) {
   run->add_option("--preset-name", ropt.preset_name, "Recorded in the preset column")->group("");
   run->add_flag("--isolated-child", ropt.isolated_child, "Set by the parent for an isolated case")->group("");
 
-  auto* render = app.add_subcommand(
-      "render", "Render one scene view with one OIT technique and write the image (PNG), |image - exact| x 8, "
-                "the depth complexity in false colour and its histogram (CSV), plus the case's CSV row");
+  auto* render =
+      app.add_subcommand("render",
+                         "Render one scene view with one OIT technique and write the image (PNG), |image - exact| x 8, "
+                         "the depth complexity in false colour and its histogram (CSV), plus the case's CSV row");
   add_backend(render);
   RenderCommand rn;
   render->add_option("--scene", rn.scene, "Scene name (scenes/NAME.json)");
   render->add_option("--view", rn.view, "View named in the scene file");
   render->add_option("--technique", rn.technique, "Technique (see: oitbench list, experiment oit)");
-  render->add_option("--out,-o", rn.out, "Image file (.png); beside it: .pfm (float), -diff8.png, -depth.png, -depth-histogram.csv, .csv");
+  render->add_option("--out,-o", rn.out,
+                     "Image file (.png); beside it: .pfm (float), -diff8.png, -depth.png, -depth-histogram.csv, .csv");
   render->add_option("--resolution", rn.resolution, "WIDTHxHEIGHT");
   render->add_option("--set", rn.sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8)")->take_all();
 
   auto* view = app.add_subcommand(
-      "view", "Open a window on one scene, rendered live by the oit experiment's cases: fly camera, keys to switch "
-              "technique, BMA, MAX_FRAGS and capture storage, per-pass timings and depth complexity on screen, and a key "
-              "that saves the camera as a named view in the scene file. Needs a display (headless: xvfb-run -a)");
+      "view",
+      "Open a window on one scene, rendered live by the oit experiment's cases: fly camera, keys to switch "
+      "technique, BMA, MAX_FRAGS and capture storage, per-pass timings and depth complexity on screen, and a key "
+      "that saves the camera as a named view in the scene file. Needs a display (headless: xvfb-run -a)");
   viewer::ViewerOptions v_opt;
-  view->add_option("--scene", v_opt.scene, "Scene name (scenes/NAME.json) or path to a scene .json")->capture_default_str();
+  view->add_option("--scene", v_opt.scene, "Scene name (scenes/NAME.json) or path to a scene .json")
+      ->capture_default_str();
   view->add_option("--view", v_opt.view, "View named in the scene file to start from (default: the file's first)");
   view->add_option("--technique", v_opt.technique, "Technique to start with (see: oitbench list, experiment oit)")
       ->capture_default_str();
-  view->add_option("--size", v_opt.size, "Window WIDTHxHEIGHT (the cases render at the window's size)")->capture_default_str();
+  view->add_option("--size", v_opt.size, "Window WIDTHxHEIGHT (the cases render at the window's size)")
+      ->capture_default_str();
   view->add_option("--detail", v_opt.detail, "Scene size: full, or small (the scene file's small overrides)")
       ->capture_default_str();
   view->add_option("--set", v_opt.sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8, block=16)")->take_all();
   view->add_option("--frames", v_opt.frames, "Render this many frames, then exit 0 (default: until Esc or closed)")
       ->check(CLI::NonNegativeNumber);
-  view->add_option("--screenshot", v_opt.screenshot, "Save the last frame, overlay included, as this PNG (also P's file)");
-  view->add_option("--keys", v_opt.keys, "Scripted key presses FRAME:KEY,... e.g. \"2:T,4:Z,6:shift+M,8:V\" (tests); "
-                                         "W/A/S/D/Q/E move as if held for 0.1 s");
-  view->add_option("--save-view", v_opt.save_view, "Name for the view V saves (taken: NAME-2, ...; default view-1, view-2, ...)");
+  view->add_option("--screenshot", v_opt.screenshot,
+                   "Save the last frame, overlay included, as this PNG (also P's file)");
+  view->add_option("--keys", v_opt.keys,
+                   "Scripted key presses FRAME:KEY,... e.g. \"2:T,4:Z,6:shift+M,8:V\" (tests); "
+                   "W/A/S/D/Q/E move as if held for 0.1 s");
+  view->add_option("--save-view", v_opt.save_view,
+                   "Name for the view V saves (taken: NAME-2, ...; default view-1, view-2, ...)");
   view->add_flag("--gl-debug", v_opt.gl_debug, "Print KHR_debug messages to stderr");
   view->footer(std::string("Keys:\n") + viewer::key_help() +
                "\n\nExit codes: 0 done, 1 a case could not be built or a view/screenshot not saved, 2 usage error,\n"

@@ -37,13 +37,13 @@ int info_command(const ContextOptions& copt) {
   std::printf("compute shaders: %s\ntimer queries:   %s\nimage atomics:   %s\nfragment_shader_interlock: %s",
               yes(gl.has_compute()), yes(gl.has_timer_query()), yes(gl.has_version(4, 2)),
               yes(gl.has_fragment_shader_interlock()));
-  for (const char* e : {"GL_ARB_fragment_shader_interlock", "GL_NV_fragment_shader_interlock",
-                        "GL_INTEL_fragment_shader_ordering"})
+  for (const char* e :
+       {"GL_ARB_fragment_shader_interlock", "GL_NV_fragment_shader_interlock", "GL_INTEL_fragment_shader_ordering"})
     if (gl.has_extension(e)) std::printf(" (%s)", e);
   std::printf("\n");
-  for (const char* e : {"GL_ARB_shader_clock", "GL_ARB_shader_ballot", "GL_ARB_gpu_shader_int64",
-                        "GL_NV_shader_atomic_int64", "GL_ARB_bindless_texture", "GL_KHR_debug",
-                        "GL_ARB_get_program_binary", "GL_ARB_pipeline_statistics_query"})
+  for (const char* e :
+       {"GL_ARB_shader_clock", "GL_ARB_shader_ballot", "GL_ARB_gpu_shader_int64", "GL_NV_shader_atomic_int64",
+        "GL_ARB_bindless_texture", "GL_KHR_debug", "GL_ARB_get_program_binary", "GL_ARB_pipeline_statistics_query"})
     std::printf("%-34s %s\n", e, yes(gl.has_extension(e)));
   for (const auto& [k, v] : gl.limits) std::printf("%-40s %lld\n", k.c_str(), v);
   std::printf("extensions: %zu\n", gl.extensions.size());
@@ -84,9 +84,12 @@ int drivers_command(const ContextOptions&) {
   if (ec) throw std::runtime_error("cannot find the oitbench binary (/proc/self/exe)");
   std::vector<DriverSpec> drivers = known_drivers();
   for (const auto& d : list_egl_devices())
-    drivers.push_back({"egl-device-" + std::to_string(d.index), "EGL device " + std::to_string(d.index) + ": " +
-                                                                     d.extensions + (d.drm_file.empty() ? "" : " " + d.drm_file),
-                       {}, "egl-device", d.index});
+    drivers.push_back(
+        {"egl-device-" + std::to_string(d.index),
+         "EGL device " + std::to_string(d.index) + ": " + d.extensions + (d.drm_file.empty() ? "" : " " + d.drm_file),
+         {},
+         "egl-device",
+         d.index});
   std::printf("GL drivers on this machine (select one with --driver NAME; each tried in a child process):\n\n");
   int usable = 0;
   for (const auto& d : drivers) {
@@ -99,7 +102,8 @@ int drivers_command(const ContextOptions&) {
     } else {
       std::string why = line_value(out, "oitbench: ");
       if (why.empty()) why = "exit code " + std::to_string(code);
-      std::printf("%-14s %s: %s\n", "", out.find("oitbench needs a 4.5 core context") != std::string::npos ? "unsupported" : "not available",
+      std::printf("%-14s %s: %s\n", "",
+                  out.find("oitbench needs a 4.5 core context") != std::string::npos ? "unsupported" : "not available",
                   why.c_str());
     }
   }

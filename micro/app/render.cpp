@@ -9,8 +9,11 @@ namespace oitbench::app {
 
 int render_command(Registry& registry, const RenderCommand& c) {
   std::string stem = c.out.ends_with(".png") ? c.out.substr(0, c.out.size() - 4) : c.out;
-  RunRequest req{"oit", {{"scene", {c.scene}}, {"view", {c.view}}, {"technique", {c.technique}}},
-                 parse_resolution(c.resolution), 1, 0};
+  RunRequest req{"oit",
+                 {{"scene", {c.scene}}, {"view", {c.view}}, {"technique", {c.technique}}},
+                 parse_resolution(c.resolution),
+                 1,
+                 0};
   for (const auto& s : c.sets) {
     auto [k, v] = parse_set_option(s);
     if (v.size() != 1) throw UsageError("render: --set " + k + " takes one value");

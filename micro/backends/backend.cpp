@@ -34,7 +34,8 @@ std::unique_ptr<Context> create_context(const ContextOptions& o) {
 #ifdef OITBENCH_HAVE_OSMESA
     ctx = create_osmesa_context(o);
 #else
-    throw BackendError("backend 'osmesa' is not part of this build (OSMesa was not found at configure time; Mesa 25.1 removed it)");
+    throw BackendError(
+        "backend 'osmesa' is not part of this build (OSMesa was not found at configure time; Mesa 25.1 removed it)");
 #endif
   } else if (o.backend == "glfw") {
 #ifdef OITBENCH_HAVE_GLFW

@@ -43,9 +43,9 @@ class ContextUnsupported : public BackendError {
 };
 
 struct ContextOptions {
-  std::string backend = "egl";  // egl | egl-device | osmesa | glfw
+  std::string backend = "egl";     // egl | egl-device | osmesa | glfw
   std::string driver = "default";  // backends/drivers.hpp: set by apply_driver
-  int device = 0;               // egl-device: index into the EGL device list
+  int device = 0;                  // egl-device: index into the EGL device list
   int width = 800, height = 600;
   bool visible = false;  // glfw: show the window
   bool debug = false;    // KHR_debug output to stderr

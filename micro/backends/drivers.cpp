@@ -26,8 +26,9 @@ std::vector<DriverSpec> known_drivers() {
       {"default", "whatever the GL loader gives (the machine's GPU driver, else Mesa's default)", {}, "", -1},
       {"llvmpipe", "Mesa llvmpipe: the CPU rasterizer, JIT-compiled by LLVM (the embedded default)",
        with_vendor({{"LIBGL_ALWAYS_SOFTWARE", "1"}, {"GALLIUM_DRIVER", "llvmpipe"}}), "", -1},
-      {"zink", "Mesa zink over lavapipe: GL 4.6 translated to Vulkan, run by lavapipe on the CPU "
-               "(apt-get install mesa-vulkan-drivers)",
+      {"zink",
+       "Mesa zink over lavapipe: GL 4.6 translated to Vulkan, run by lavapipe on the CPU "
+       "(apt-get install mesa-vulkan-drivers)",
        with_vendor({{"LIBGL_ALWAYS_SOFTWARE", "1"}, {"GALLIUM_DRIVER", "zink"}}), "", -1},
       {"softpipe", "Mesa softpipe: the reference CPU rasterizer (GL 3.3 core: too old for oitbench's 4.5)",
        with_vendor({{"LIBGL_ALWAYS_SOFTWARE", "1"}, {"GALLIUM_DRIVER", "softpipe"}}), "", -1},
@@ -42,8 +43,7 @@ DriverSpec find_driver(const std::string& name) {
     std::string n = name.substr(prefix.size());
     bool digits = !n.empty() && n.size() < 4;
     for (char c : n) digits = digits && std::isdigit(static_cast<unsigned char>(c));
-    if (digits)
-      return {name, "EGL device " + n + " (see: oitbench info --drivers)", {}, "egl-device", std::stoi(n)};
+    if (digits) return {name, "EGL device " + n + " (see: oitbench info --drivers)", {}, "egl-device", std::stoi(n)};
   }
   std::string valid;
   for (const auto& d : known_drivers()) valid += (valid.empty() ? "" : ", ") + d.name;
@@ -69,8 +69,10 @@ std::string driver_slug(const GlInfo& gl) {
     std::string out;
     for (char c : s) {
       unsigned char u = static_cast<unsigned char>(c);
-      if (std::isalnum(u)) out += static_cast<char>(std::tolower(u));
-      else if (!out.empty() && out.back() != '-') out += '-';
+      if (std::isalnum(u))
+        out += static_cast<char>(std::tolower(u));
+      else if (!out.empty() && out.back() != '-')
+        out += '-';
     }
     while (!out.empty() && out.back() == '-') out.pop_back();
     return out;

@@ -12,11 +12,11 @@
 namespace oitbench {
 
 struct DriverSpec {
-  std::string name;         // default | llvmpipe | zink | softpipe | egl-device-N
-  std::string description;  // in words, for `info --drivers` and errors
+  std::string name;                                      // default | llvmpipe | zink | softpipe | egl-device-N
+  std::string description;                               // in words, for `info --drivers` and errors
   std::vector<std::pair<std::string, std::string>> env;  // set before the context is created
-  std::string backend;      // empty: the caller's --backend; else the backend this driver needs
-  int device = -1;          // egl-device-N: the EGL device index
+  std::string backend;  // empty: the caller's --backend; else the backend this driver needs
+  int device = -1;      // egl-device-N: the EGL device index
 };
 
 // The drivers oitbench knows how to select (EGL devices are appended by `info --drivers` once

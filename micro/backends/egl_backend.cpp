@@ -14,18 +14,30 @@ namespace {
 
 std::string egl_error_name(EGLint e) {
   switch (e) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-    default: return "EGL error 0x" + std::to_string(e);
+    case EGL_SUCCESS:
+      return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    case EGL_BAD_SURFACE:
+      return "EGL_BAD_SURFACE";
+    default:
+      return "EGL error 0x" + std::to_string(e);
   }
 }
 
@@ -59,7 +71,8 @@ class EglContext final : public Context {
  public:
   EglContext(const ContextOptions& o) : backend_(o.backend) {
     EglEntryPoints ep;
-    if (!ep.get_platform_display) throw BackendError("EGL: eglGetPlatformDisplayEXT is missing (EGL 1.5 / EGL_EXT_platform_base needed)");
+    if (!ep.get_platform_display)
+      throw BackendError("EGL: eglGetPlatformDisplayEXT is missing (EGL 1.5 / EGL_EXT_platform_base needed)");
     if (o.backend == "egl") {
       display_ = ep.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
       if (display_ != EGL_NO_DISPLAY && eglInitialize(display_, nullptr, nullptr)) {
@@ -72,17 +85,31 @@ class EglContext final : public Context {
     } else {
       open_device(ep, o.device);
     }
-    if (!eglBindAPI(EGL_OPENGL_API)) throw BackendError("EGL: eglBindAPI(EGL_OPENGL_API) failed: " + egl_error_name(eglGetError()));
-    const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                     EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
+    if (!eglBindAPI(EGL_OPENGL_API))
+      throw BackendError("EGL: eglBindAPI(EGL_OPENGL_API) failed: " + egl_error_name(eglGetError()));
+    const EGLint config_attribs[] = {EGL_SURFACE_TYPE,
+                                     EGL_PBUFFER_BIT,
+                                     EGL_RENDERABLE_TYPE,
+                                     EGL_OPENGL_BIT,
+                                     EGL_RED_SIZE,
+                                     8,
+                                     EGL_GREEN_SIZE,
+                                     8,
+                                     EGL_BLUE_SIZE,
+                                     8,
+                                     EGL_NONE};
     EGLConfig config = nullptr;
     EGLint count = 0;
     if (!eglChooseConfig(display_, config_attribs, &config, 1, &count) || count == 0)
       throw BackendError("EGL: no config with EGL_PBUFFER_BIT|EGL_OPENGL_BIT on " + device_);
     // 4.6 where the driver offers it (NVIDIA), else 4.5 (Mesa llvmpipe answers 4.6 with EGL_BAD_MATCH).
     for (int minor : {6, 5}) {
-      const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, minor,
-                                    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+      const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                    4,
+                                    EGL_CONTEXT_MINOR_VERSION,
+                                    minor,
+                                    EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                     EGL_NONE};
       context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, ctx_attribs);
       if (context_ != EGL_NO_CONTEXT) break;
@@ -93,9 +120,8 @@ class EglContext final : public Context {
       eglTerminate(display_);
       display_ = EGL_NO_DISPLAY;
       if (!offered.empty())
-        throw ContextUnsupported("the driver offers OpenGL " + offered + " on " + device_ +
-                                     "; oitbench needs a 4.5 core context",
-                                 offered);
+        throw ContextUnsupported(
+            "the driver offers OpenGL " + offered + " on " + device_ + "; oitbench needs a 4.5 core context", offered);
       throw BackendError("EGL: cannot create a GL 4.5 core context on " + device_ + ": " + err);
     }
     // Surfaceless where EGL_KHR_surfaceless_context exists; a 1x1 pbuffer otherwise.
@@ -124,8 +150,9 @@ class EglContext final : public Context {
   std::string offered_version(EGLConfig config) {
     using GetString = const unsigned char* (*)(unsigned);
     auto get_string = reinterpret_cast<GetString>(eglGetProcAddress("glGetString"));
-    const EGLint core33[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                             EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint core33[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     const EGLint plain[] = {EGL_NONE};
     for (const EGLint* attribs : {core33, plain}) {
       EGLContext c = eglCreateContext(display_, config, EGL_NO_CONTEXT, attribs);
@@ -146,12 +173,13 @@ class EglContext final : public Context {
     auto devices = query_devices(ep);
     if (devices.empty()) throw BackendError("EGL: no EGL devices (EGL_EXT_device_enumeration missing or empty)");
     if (index < 0 || index >= static_cast<int>(devices.size()))
-      throw BackendError("EGL: --device " + std::to_string(index) + " out of range; " +
-                         std::to_string(devices.size()) + " device(s): see `oitbench info --backend egl-device`");
+      throw BackendError("EGL: --device " + std::to_string(index) + " out of range; " + std::to_string(devices.size()) +
+                         " device(s): see `oitbench info --backend egl-device`");
     auto dev = devices[static_cast<size_t>(index)];
     display_ = ep.get_platform_display(EGL_PLATFORM_DEVICE_EXT, dev, nullptr);
     if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr))
-      throw BackendError("EGL: cannot initialize EGL device " + std::to_string(index) + ": " + egl_error_name(eglGetError()));
+      throw BackendError("EGL: cannot initialize EGL device " + std::to_string(index) + ": " +
+                         egl_error_name(eglGetError()));
     std::string drm = device_string(ep, dev, EGL_DRM_DEVICE_FILE_EXT);
     device_ = "EGL device " + std::to_string(index) + " (" + device_string(ep, dev, EGL_EXTENSIONS) +
               (drm.empty() ? "" : ", " + drm) + ")";

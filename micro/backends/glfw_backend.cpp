@@ -18,7 +18,8 @@ class GlfwContext final : public Context {
     if (!glfwInit()) {
       const char* msg = nullptr;
       glfwGetError(&msg);
-      throw BackendError(std::string("GLFW: glfwInit failed (no display? run under xvfb-run -a): ") + (msg ? msg : "?"));
+      throw BackendError(std::string("GLFW: glfwInit failed (no display? run under xvfb-run -a): ") +
+                         (msg ? msg : "?"));
     }
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);

@@ -1,11 +1,11 @@
 // OSMesa: Mesa's off-screen software context (core profile 4.5 on Mesa 22; removed in Mesa 25.1,
 // so this file is built only when CMake finds it).
-#include "gl/gl.hpp"  // glad before OSMesa's header
 #include <GL/osmesa.h>
 
 #include <vector>
 
 #include "backends/backend.hpp"
+#include "gl/gl.hpp"  // glad before OSMesa's header
 
 namespace oitbench {
 namespace {
@@ -13,9 +13,19 @@ namespace {
 class OsmesaContext final : public Context {
  public:
   explicit OsmesaContext(const ContextOptions&) {
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
-                           OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                           OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           24,
+                           OSMESA_STENCIL_BITS,
+                           8,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           4,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           5,
+                           0};
     ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!ctx_) throw BackendError("OSMesa: OSMesaCreateContextAttribs(core 4.5) returned NULL");
     // The default framebuffer is a 1x1 client buffer: experiments render into FBOs.

@@ -108,8 +108,7 @@ std::string ParamSet::describe() const {
 
 std::pair<std::string, std::vector<std::string>> parse_set_option(const std::string& text) {
   auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw UsageError("--set expects NAME=V1,V2,... (got '" + text + "')");
+  if (eq == std::string::npos || eq == 0) throw UsageError("--set expects NAME=V1,V2,... (got '" + text + "')");
   std::string name = text.substr(0, eq);
   std::vector<std::string> values;
   std::stringstream ss(text.substr(eq + 1));
@@ -120,8 +119,7 @@ std::pair<std::string, std::vector<std::string>> parse_set_option(const std::str
       double a = 0, b = 0, step = 1;
       std::string rest = item.substr(dots + 2);
       auto colon = rest.find(':');
-      bool ok = parse_number(item.substr(0, dots), true, a) &&
-                parse_number(rest.substr(0, colon), true, b) &&
+      bool ok = parse_number(item.substr(0, dots), true, a) && parse_number(rest.substr(0, colon), true, b) &&
                 (colon == std::string::npos || parse_number(rest.substr(colon + 1), true, step));
       if (!ok || step <= 0 || b < a)
         throw UsageError("--set " + name + ": bad range '" + item + "' (expected A..B or A..B:STEP with A<=B)");

@@ -1,5 +1,3 @@
-#include "core/text_position.hpp"
-#include "core/data_dirs.hpp"
 #include "core/presets.hpp"
 
 #include <filesystem>
@@ -7,6 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
+
+#include "core/data_dirs.hpp"
+#include "core/text_position.hpp"
 
 namespace oitbench {
 
@@ -28,7 +29,8 @@ std::string to_value(const nlohmann::json& v, const std::string& where) {
 Resolution parse_resolution(const std::string& text) {
   static const std::regex re(R"((\d{1,5})x(\d{1,5}))");
   std::smatch m;
-  if (!std::regex_match(text, m, re)) throw UsageError("resolution '" + text + "': expected WIDTHxHEIGHT, e.g. 800x600");
+  if (!std::regex_match(text, m, re))
+    throw UsageError("resolution '" + text + "': expected WIDTHxHEIGHT, e.g. 800x600");
   Resolution r{std::stoi(m[1]), std::stoi(m[2])};
   if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384)
     throw UsageError("resolution '" + text + "': each side must be in [1, 16384]");
@@ -74,13 +76,15 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
         req.resolution = parse_resolution(to_value(v, where + ".resolution"));
       } else if (k == "reps" || k == "warmup") {
         if (!v.is_number_integer() || v.get<int>() < (k == "reps" ? 1 : 0))
-          throw UsageError(where + "." + k + ": expected a " + (k == "reps" ? "positive" : "non-negative") + " integer");
+          throw UsageError(where + "." + k + ": expected a " + (k == "reps" ? "positive" : "non-negative") +
+                           " integer");
         (k == "reps" ? req.reps : req.warmup) = v.get<int>();
       } else if (k == "quick") {
         if (!v.is_boolean()) throw UsageError(where + ".quick: expected true or false");
         req.quick = v.get<bool>();
       } else {
-        throw UsageError(where + ": unknown key \"" + k + "\"; expected experiment, set, resolution, reps, warmup, quick");
+        throw UsageError(where + ": unknown key \"" + k +
+                         "\"; expected experiment, set, resolution, reps, warmup, quick");
       }
     }
     p.runs.push_back(std::move(req));

@@ -34,10 +34,11 @@ std::string cpu_model() {
 }
 
 std::string recorded_env() {
-  static const char* const names[] = {"LP_NATIVE_VECTOR_WIDTH",  "GALLIUM_DRIVER",        "LIBGL_ALWAYS_SOFTWARE",
-                                      "MESA_SHADER_CACHE_DISABLE", "MESA_SHADER_CACHE_DIR", "MESA_GL_VERSION_OVERRIDE",
-                                      "MESA_LOADER_DRIVER_OVERRIDE", "EGL_PLATFORM",        "__GL_THREADED_OPTIMIZATIONS",
-                                      "__GL_SHADER_DISK_CACHE",  "OITBENCH_SHADERS"};
+  static const char* const names[] = {
+      "LP_NATIVE_VECTOR_WIDTH",      "GALLIUM_DRIVER",        "LIBGL_ALWAYS_SOFTWARE",
+      "MESA_SHADER_CACHE_DISABLE",   "MESA_SHADER_CACHE_DIR", "MESA_GL_VERSION_OVERRIDE",
+      "MESA_LOADER_DRIVER_OVERRIDE", "EGL_PLATFORM",          "__GL_THREADED_OPTIMIZATIONS",
+      "__GL_SHADER_DISK_CACHE",      "OITBENCH_SHADERS"};
   std::string s;
   for (const char* n : names)
     if (const char* v = std::getenv(n)) s += (s.empty() ? "" : ";") + std::string(n) + "=" + v;

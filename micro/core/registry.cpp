@@ -27,8 +27,9 @@ void Registry::add(std::unique_ptr<Experiment> e) {
       if (c.name == m.name)
         throw std::logic_error("experiment '" + e->name() + "': metric '" + m.name + "' is a framework column");
     if (auto owner = param_owner(m.name); !owner.empty())
-      throw std::logic_error("experiment '" + e->name() + "': metric '" + m.name + "' has the name of a parameter of '" +
-                             owner + "'; a column is either a parameter or a metric");
+      throw std::logic_error("experiment '" + e->name() + "': metric '" + m.name +
+                             "' has the name of a parameter of '" + owner +
+                             "'; a column is either a parameter or a metric");
     for (const auto& x : experiments_)
       for (const auto& other : x->metric_specs())
         if (other.name == m.name && (other.type != m.type || other.unit != m.unit))
@@ -40,8 +41,8 @@ void Registry::add(std::unique_ptr<Experiment> e) {
     for (const auto& x : experiments_)
       for (const auto& m : x->metric_specs())
         if (m.name == p.name)
-          throw std::logic_error("experiment '" + e->name() + "': parameter '" + p.name + "' has the name of a metric of '" +
-                                 x->name() + "'");
+          throw std::logic_error("experiment '" + e->name() + "': parameter '" + p.name +
+                                 "' has the name of a metric of '" + x->name() + "'");
   experiments_.push_back(std::move(e));
   std::sort(experiments_.begin(), experiments_.end(),
             [](const auto& a, const auto& b) { return a->name() < b->name(); });

@@ -13,8 +13,8 @@
 #include "backends/backend.hpp"
 #include "core/params.hpp"
 #include "core/schema.hpp"
-#include "gl/shader.hpp"
 #include "core/timer.hpp"
+#include "gl/shader.hpp"
 
 namespace oitbench {
 
@@ -30,7 +30,7 @@ struct Resolution {
 
 struct Validation {
   bool valid = false;
-  std::string reason;  // why not valid (or a note on a valid one)
+  std::string reason;                          // why not valid (or a note on a valid one)
   std::map<std::string, std::string> metrics;  // values for the experiment's metric columns
 };
 
@@ -121,6 +121,5 @@ class Registry {
  private:
   std::vector<std::unique_ptr<Experiment>> experiments_;
 };
-
 
 }  // namespace oitbench

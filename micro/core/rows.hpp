@@ -35,7 +35,7 @@ struct CaseRecord {
 };
 
 struct RowSettings {
-  Row run;            // the run's columns (backend, renderer, git_sha, ...)
+  Row run;  // the run's columns (backend, renderer, git_sha, ...)
   std::string experiment;
   Resolution res;
   int reps = 0, warmup = 0;

@@ -41,7 +41,8 @@ class SignalGuard {
   bool stopped() const { return g_stop_signal != 0; }
 
  private:
-  struct sigaction old_int_ {}, old_term_ {};
+  struct sigaction old_int_ {
+  }, old_term_{};
 };
 
 using Clock = std::chrono::steady_clock;
@@ -85,16 +86,25 @@ class Runner {
     shaders_ = std::make_unique<ShaderLibrary>(opt_.shader_root);
     if (opt_.program_cache && gl_.has_extension("GL_ARB_get_program_binary"))
       shaders_->enable_program_cache(default_program_cache_dir(), gl_.vendor + "|" + gl_.renderer + "|" + gl_.version);
-    use_gpu_timer_ = opt_.timer == "gpu" || (opt_.timer == "auto" && !gl_.is_software_renderer() && gl_.has_timer_query());
+    use_gpu_timer_ =
+        opt_.timer == "gpu" || (opt_.timer == "auto" && !gl_.is_software_renderer() && gl_.has_timer_query());
     // A CPU rasterizer has no pipeline to keep full, and its queries are wrong: bracket every pass.
     sync_passes_ = opt_.sync_passes || gl_.is_software_renderer() || !use_gpu_timer_;
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
     if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_));
-    run_columns_ = {{"schema", std::to_string(kCsvSchema)}, {"backend", ctx_->backend()}, {"device", ctx_->device()},
+    run_columns_ = {{"schema", std::to_string(kCsvSchema)},
+                    {"backend", ctx_->backend()},
+                    {"device", ctx_->device()},
                     {"driver", driver_slug(gl_)},
-                    {"gl_vendor", gl_.vendor}, {"gl_renderer", gl_.renderer}, {"gl_version", gl_.version},
-                    {"git_sha", git_sha()}, {"hostname", host_name()}, {"cpu_model", cpu_model()},
-                    {"lp_num_threads", lp_num_threads()}, {"env", recorded_env()}, {"preset", opt_.preset_name}};
+                    {"gl_vendor", gl_.vendor},
+                    {"gl_renderer", gl_.renderer},
+                    {"gl_version", gl_.version},
+                    {"git_sha", git_sha()},
+                    {"hostname", host_name()},
+                    {"cpu_model", cpu_model()},
+                    {"lp_num_threads", lp_num_threads()},
+                    {"env", recorded_env()},
+                    {"preset", opt_.preset_name}};
 
     // Expand every request first so progress can say "case i of n".
     std::vector<Planned> plan = make_plan(requests);
@@ -155,10 +165,16 @@ class Runner {
   // The driver gives no GL 4.5 core context: every case is `unsupported`, with the version it offered.
   int unsupported_driver(const std::vector<RunRequest>& requests, const ContextUnsupported& e) {
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
-    run_columns_ = {{"schema", std::to_string(kCsvSchema)}, {"backend", opt_.context.backend},
-                    {"driver", opt_.context.driver}, {"gl_version", e.offered()}, {"git_sha", git_sha()},
-                    {"hostname", host_name()}, {"cpu_model", cpu_model()}, {"lp_num_threads", lp_num_threads()},
-                    {"env", recorded_env()}, {"preset", opt_.preset_name}};
+    run_columns_ = {{"schema", std::to_string(kCsvSchema)},
+                    {"backend", opt_.context.backend},
+                    {"driver", opt_.context.driver},
+                    {"gl_version", e.offered()},
+                    {"git_sha", git_sha()},
+                    {"hostname", host_name()},
+                    {"cpu_model", cpu_model()},
+                    {"lp_num_threads", lp_num_threads()},
+                    {"env", recorded_env()},
+                    {"preset", opt_.preset_name}};
     size_t cases = 0;
     for (const auto& p : make_plan(requests))
       for (const auto& c : p.cases) {
@@ -200,7 +216,7 @@ class Runner {
       rec.compile_ms = ms_since(t0);
       auto after = shaders_->cache_counts();
       unsigned hits = after.hits - before.hits, misses = after.misses - before.misses;
-      rec.program_cache = !opt_.program_cache ? "off"
+      rec.program_cache = !opt_.program_cache  ? "off"
                           : hits + misses == 0 ? ""
                           : misses == 0        ? "hit"
                           : hits == 0          ? "miss"
@@ -262,8 +278,10 @@ class Runner {
           try {
             Validation v = c.instance->validate();
             for (const auto& [k, val] : v.metrics) rec.metrics[k] = val;
-            if (v.valid) rec.note = v.reason;
-            else rec.fail(Status::Invalid, v.reason);
+            if (v.valid)
+              rec.note = v.reason;
+            else
+              rec.fail(Status::Invalid, v.reason);
           } catch (const std::exception& e) {
             rec.fail(Status::Error, std::string("validate: ") + e.what());
           }
@@ -297,13 +315,31 @@ class Runner {
     if (!mkdtemp(dbuf.data())) throw std::runtime_error("cannot create a temporary directory for an isolated case");
     std::string dir = dbuf.data();
     std::string out = dir + "/case.csv", raw = dir + "/raw.csv";
-    std::vector<std::string> args = {"/proc/self/exe", "run", exp.name(), "--out", out, "--isolate", "never",
-                                     "--no-progress", "--isolated-child", "--backend", opt_.context.backend,
-                                     "--driver", opt_.context.driver,
-                                     "--device", std::to_string(opt_.context.device),
-                                     "--resolution", std::to_string(p.res.width) + "x" + std::to_string(p.res.height),
-                                     "--reps", std::to_string(p.reps), "--warmup", std::to_string(p.warmup),
-                                     "--timer", opt_.timer, "--shaders", opt_.shader_root};
+    std::vector<std::string> args = {"/proc/self/exe",
+                                     "run",
+                                     exp.name(),
+                                     "--out",
+                                     out,
+                                     "--isolate",
+                                     "never",
+                                     "--no-progress",
+                                     "--isolated-child",
+                                     "--backend",
+                                     opt_.context.backend,
+                                     "--driver",
+                                     opt_.context.driver,
+                                     "--device",
+                                     std::to_string(opt_.context.device),
+                                     "--resolution",
+                                     std::to_string(p.res.width) + "x" + std::to_string(p.res.height),
+                                     "--reps",
+                                     std::to_string(p.reps),
+                                     "--warmup",
+                                     std::to_string(p.warmup),
+                                     "--timer",
+                                     opt_.timer,
+                                     "--shaders",
+                                     opt_.shader_root};
     if (!opt_.preset_name.empty()) args.insert(args.end(), {"--preset-name", opt_.preset_name});
     if (raw_writer_) args.insert(args.end(), {"--raw", raw});
     if (!opt_.interleave) args.push_back("--no-interleave");
@@ -328,7 +364,8 @@ class Runner {
           rec.fail(Status::Error, "the case's process died with signal " + std::to_string(outcome.code));
           break;
         default:
-          rec.fail(Status::Error, "the case's process exited with code " + std::to_string(outcome.code) + " and no rows");
+          rec.fail(Status::Error,
+                   "the case's process exited with code " + std::to_string(outcome.code) + " and no rows");
       }
       finish_case(row_settings(p), rec);
     }
@@ -380,7 +417,8 @@ void check_requests(const Registry& registry, const std::vector<RunRequest>& req
   if (requests.empty()) throw UsageError("nothing to run; experiments: " + registry.names());
   for (const auto& r : requests) {
     const Experiment* e = registry.find(r.experiment);
-    if (!e) throw UsageError("unknown experiment '" + r.experiment + "'; valid experiments: " + registry.names() + ", all");
+    if (!e)
+      throw UsageError("unknown experiment '" + r.experiment + "'; valid experiments: " + registry.names() + ", all");
     auto specs = registry.params_of(*e);
     for (const auto& [name, values] : r.overrides) {
       auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });

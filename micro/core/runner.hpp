@@ -29,18 +29,18 @@ struct RunOptions {
   bool reps_given = false, warmup_given = false;
   bool quick = false;
   std::string out = "-";
-  std::string raw;               // --raw: every repetition as a row
-  std::string timer = "auto";    // auto | cpu | gpu
-  bool sync_passes = false;      // glFinish around every pass on hardware drivers too (always on software ones)
+  std::string raw;             // --raw: every repetition as a row
+  std::string timer = "auto";  // auto | cpu | gpu
+  bool sync_passes = false;    // glFinish around every pass on hardware drivers too (always on software ones)
   bool interleave = true;
   std::string isolate = "auto";  // auto (hang-prone experiments) | always | never
   double timeout_s = 600;        // per case, watchdog
   bool progress = true;
-  std::string preset_name;       // recorded in each row
-  std::string shader_root;       // where shaders/ lives
-  bool program_cache = true;     // reuse linked programs (glGetProgramBinary) across runs
-  bool isolated_child = false;   // this process runs one case for a parent: no summary line
-  std::string image_stem;        // render: where a case writes its images (CaseContext::image_stem)
+  std::string preset_name;      // recorded in each row
+  std::string shader_root;      // where shaders/ lives
+  bool program_cache = true;    // reuse linked programs (glGetProgramBinary) across runs
+  bool isolated_child = false;  // this process runs one case for a parent: no summary line
+  std::string image_stem;       // render: where a case writes its images (CaseContext::image_stem)
 };
 
 // Validates the requests against the registry and their grids (throws UsageError listing the valid

@@ -10,32 +10,46 @@ namespace oitbench {
 
 const char* status_name(Status s) {
   switch (s) {
-    case Status::Ok: return "ok";
-    case Status::Invalid: return "invalid";
-    case Status::Unsupported: return "unsupported";
-    case Status::Error: return "error";
-    case Status::Timeout: return "timeout";
+    case Status::Ok:
+      return "ok";
+    case Status::Invalid:
+      return "invalid";
+    case Status::Unsupported:
+      return "unsupported";
+    case Status::Error:
+      return "error";
+    case Status::Timeout:
+      return "timeout";
   }
   return "?";
 }
 
 const char* status_description(Status s) {
   switch (s) {
-    case Status::Ok: return "ran and matched its reference: the times are valid";
-    case Status::Invalid: return "ran but disagreed with its reference (reason says how): no times";
-    case Status::Unsupported: return "this driver cannot run the case (reason says what is missing): no times";
-    case Status::Error: return "failed to build or run (reason names the file and line or the GL error): no times";
-    case Status::Timeout: return "killed by the watchdog after --timeout seconds: no times";
+    case Status::Ok:
+      return "ran and matched its reference: the times are valid";
+    case Status::Invalid:
+      return "ran but disagreed with its reference (reason says how): no times";
+    case Status::Unsupported:
+      return "this driver cannot run the case (reason says what is missing): no times";
+    case Status::Error:
+      return "failed to build or run (reason names the file and line or the GL error): no times";
+    case Status::Timeout:
+      return "killed by the watchdog after --timeout seconds: no times";
   }
   return "?";
 }
 
 const char* value_type_name(ValueType t) {
   switch (t) {
-    case ValueType::Text: return "text";
-    case ValueType::Integer: return "integer";
-    case ValueType::Number: return "number";
-    case ValueType::Flag: return "flag";
+    case ValueType::Text:
+      return "text";
+    case ValueType::Integer:
+      return "integer";
+    case ValueType::Number:
+      return "number";
+    case ValueType::Flag:
+      return "flag";
   }
   return "?";
 }
@@ -55,8 +69,10 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"reason", T::Text, "", "why the case is not ok, or a note on an ok one", "result"},
       {"backend", T::Text, "", "context backend: egl, egl-device, osmesa, glfw", "run"},
       {"device", T::Text, "", "the display or EGL device the context ran on", "run"},
-      {"driver", T::Text, "", "the GL driver, named from its GL strings: llvmpipe, zink-lavapipe, nvidia-h200, ... "
-                              "(--driver selects one; see oitbench info --drivers)", "run"},
+      {"driver", T::Text, "",
+       "the GL driver, named from its GL strings: llvmpipe, zink-lavapipe, nvidia-h200, ... "
+       "(--driver selects one; see oitbench info --drivers)",
+       "run"},
       {"gl_vendor", T::Text, "", "GL_VENDOR", "run"},
       {"gl_renderer", T::Text, "", "GL_RENDERER", "run"},
       {"gl_version", T::Text, "", "GL_VERSION", "run"},
@@ -77,9 +93,11 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"gpu_median_ms", T::Number, "ms", "median of the GL_TIME_ELAPSED queries, where the driver has them", "timing"},
       {"gpu_mad_ms", T::Number, "ms", "its median absolute deviation", "timing"},
       {"timer", T::Text, "", "the primary clock of median_ms: cpu or gpu (total and CPU passes: always cpu)", "timing"},
-      {"pass_sync", T::Flag, "", "1: every pass bracketed by glFinish, so cpu_median_ms is its work (software "
-                                 "renderers, --sync-passes); 0: passes ran back to back, timed by their queries, "
-                                 "and a pass's cpu_median_ms is its submission", "timing"},
+      {"pass_sync", T::Flag, "",
+       "1: every pass bracketed by glFinish, so cpu_median_ms is its work (software "
+       "renderers, --sync-passes); 0: passes ran back to back, timed by their queries, "
+       "and a pass's cpu_median_ms is its submission",
+       "timing"},
       {"compile_ms", T::Number, "ms", "preparing the case: compile, link, allocate, upload", "timing"},
       {"program_cache", T::Text, "", "hit, miss, partial or off: whether compile_ms paid for compiling", "timing"},
       {"warmup_ms", T::Number, "ms", "the first (untimed) repetition, JIT included", "timing"},
@@ -200,7 +218,8 @@ std::string schema_json(const Registry& registry) {
   ordered_json out;
   out["schema"] = kCsvSchema;
   out["statuses"] = ordered_json::array();
-  for (Status s : kAllStatuses) out["statuses"].push_back({{"name", status_name(s)}, {"meaning", status_description(s)}});
+  for (Status s : kAllStatuses)
+    out["statuses"].push_back({{"name", status_name(s)}, {"meaning", status_description(s)}});
   auto& summary = out["summary_columns"] = ordered_json::array();
   for (const auto& c : summary_base_columns()) summary.push_back(column(c, "base"));
   for (const auto& n : order) summary.push_back(entries[n]);

@@ -35,9 +35,8 @@ Summary summarize(const std::vector<double>& samples) {
     s.stddev = std::sqrt(ss / static_cast<double>(s.n - 1));
   }
   const double limit = s.mad > 0 ? 5.0 * s.mad : 0.05 * std::fabs(s.median);
-  s.outliers = static_cast<size_t>(std::count_if(samples.begin(), samples.end(), [&](double x) {
-    return std::fabs(x - s.median) > limit;
-  }));
+  s.outliers = static_cast<size_t>(
+      std::count_if(samples.begin(), samples.end(), [&](double x) { return std::fabs(x - s.median) > limit; }));
   return s;
 }
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "oit/packed_fragment.hpp"
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
+#include "oit/packed_fragment.hpp"
 
 namespace oitbench {
 
@@ -67,8 +67,9 @@ class InsertCase final : public CaseInstance {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if (static_cast<GLint64>(bytes) > max_block)
-      throw Unsupported("insert: " + std::to_string(bytes) + " bytes of fragments exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
-                        std::to_string(max_block) + "); use a smaller --resolution");
+      throw Unsupported("insert: " + std::to_string(bytes) +
+                        " bytes of fragments exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" + std::to_string(max_block) +
+                        "); use a smaller --resolution");
     std::string keys_define = keys_ == "front" ? "KEYS_FRONT" : keys_ == "back" ? "KEYS_BACK" : "KEYS_RANDOM";
     program_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "insert/insert.frag"}},
                          {{"SORT_N", std::to_string(size_)},
@@ -129,7 +130,8 @@ class InsertCase final : public CaseInstance {
             if (bad++ == 0)
               first = "pixel (" + std::to_string(x) + "," + std::to_string(y) + ")[" + std::to_string(i) + "] = (" +
                       std::to_string(key_of(got[base + i])) + ", " + std::to_string(got[base + i].rgba) +
-                      "), CPU reference (" + std::to_string(key_of(want[i])) + ", " + std::to_string(want[i].rgba) + ")";
+                      "), CPU reference (" + std::to_string(key_of(want[i])) + ", " + std::to_string(want[i].rgba) +
+                      ")";
             break;
           }
       }
@@ -163,16 +165,31 @@ class InsertExperiment final : public Experiment {
     ParamSpec variant{"variant",
                       "early-out: swap, stop when in place (Listing 4.8); no-early-out: swap where out of order "
                       "(4.9); two-moves: two moves instead of a swap (A.1)",
-                      {"early-out", "no-early-out", "two-moves"}, {}, {"early-out", "no-early-out", "two-moves"}};
-    ParamSpec size{"size", "fragments in the sorted array", {"4", "8", "12", "16", "20", "24", "28", "32"}, {"8", "32"},
-                   {}, ParamSpec::Kind::Integer, 2, 32};
-    ParamSpec repeat{"repeat", "insertions per pixel (the thesis: 128 Village, 16 Powerplant)", {"128"}, {"32"}, {},
-                     ParamSpec::Kind::Integer, 1, 100000};
+                      {"early-out", "no-early-out", "two-moves"},
+                      {},
+                      {"early-out", "no-early-out", "two-moves"}};
+    ParamSpec size{"size",
+                   "fragments in the sorted array",
+                   {"4", "8", "12", "16", "20", "24", "28", "32"},
+                   {"8", "32"},
+                   {},
+                   ParamSpec::Kind::Integer,
+                   2,
+                   32};
+    ParamSpec repeat{"repeat", "insertions per pixel (the thesis: 128 Village, 16 Powerplant)",
+                     {"128"},  {"32"},
+                     {},       ParamSpec::Kind::Integer,
+                     1,        100000};
     ParamSpec keys{"keys",
                    "new keys: random (uniform; as the array keeps the largest keys most stop early), front (smaller "
                    "than all: stop at once), back (larger than all: travel the whole array)",
-                   {"random", "back"}, {"random"}, {"random", "front", "back"}};
-    ParamSpec memory{"memory", "registers: constant loop bounds (unrolled); local: uniform bounds", {"registers"}, {},
+                   {"random", "back"},
+                   {"random"},
+                   {"random", "front", "back"}};
+    ParamSpec memory{"memory",
+                     "registers: constant loop bounds (unrolled); local: uniform bounds",
+                     {"registers"},
+                     {},
                      {"registers", "local"}};
     return {variant, size, repeat, keys, memory};
   }

@@ -34,7 +34,8 @@ class LayoutCase final : public CaseInstance {
         vao_(gl::make_vertex_array()) {
     Defines defines = layout_.defines(width_, height_, nodes_);
     if (p.get("order") == "scattered") defines.push_back({"ORDER_SCATTERED", ""});
-    program_ = ctx.build({{GL_VERTEX_SHADER, "common/layers.vert"}, {GL_FRAGMENT_SHADER, "layout/layout.frag"}}, defines);
+    program_ =
+        ctx.build({{GL_VERTEX_SHADER, "common/layers.vert"}, {GL_FRAGMENT_SHADER, "layout/layout.frag"}}, defines);
     glProgramUniform1i(program_.get(), glGetUniformLocation(program_.get(), "zero"), 0);
   }
 
@@ -95,12 +96,15 @@ class LayoutCase final : public CaseInstance {
     const bool race_free = layers_ == 1;
     v.valid = inconsistent == 0 && (lost == 0 || !race_free);
     if (inconsistent > 0)
-      v.reason = std::to_string(inconsistent) + " node(s) no sequence of whole updates can produce; first: " + first_bad;
+      v.reason =
+          std::to_string(inconsistent) + " node(s) no sequence of whole updates can produce; first: " + first_bad;
     else if (lost > 0 && race_free)
       v.reason = std::to_string(lost) + " node update(s) lost in a race-free case (layers=1); first: " + first_lost;
     else if (lost > 0)
-      v.reason = std::to_string(lost) + " node update(s) lost to races within a draw (layers > 1, counted, not a "
-                 "failure); first: " + first_lost;
+      v.reason = std::to_string(lost) +
+                 " node update(s) lost to races within a draw (layers > 1, counted, not a "
+                 "failure); first: " +
+                 first_lost;
     return v;
   }
 
@@ -129,11 +133,16 @@ class LayoutExperiment final : public Experiment {
                      StorageLayout::names()};
     ParamSpec nodes{"nodes", "nodes (uvec2) per pixel", {"4", "8", "16"}, {"4"}, {}, ParamSpec::Kind::Integer, 4, 32};
     ParamSpec layers{"layers", "overlapping screen-filling layers per draw (1: race-free and exact)",
-                     {"8"}, {"4"}, {}, ParamSpec::Kind::Integer, 1, 4096};
-    ParamSpec draws{"draws", "draws per repetition (barrier between draws)", {"2"}, {"2"}, {},
-                    ParamSpec::Kind::Integer, 1, 4096};
-    ParamSpec order{"order", "store order: sequential, or scattered (a per-fragment rotation, like UMLAB's writes)",
-                    {"sequential"}, {}, {"sequential", "scattered"}};
+                     {"8"},    {"4"},
+                     {},       ParamSpec::Kind::Integer,
+                     1,        4096};
+    ParamSpec draws{
+        "draws", "draws per repetition (barrier between draws)", {"2"}, {"2"}, {}, ParamSpec::Kind::Integer, 1, 4096};
+    ParamSpec order{"order",
+                    "store order: sequential, or scattered (a per-fragment rotation, like UMLAB's writes)",
+                    {"sequential"},
+                    {},
+                    {"sequential", "scattered"}};
     // The compared parameter last: the grid's innermost loop, so one interleaved group holds all layouts.
     return {nodes, layers, draws, order, layout};
   }

@@ -8,17 +8,16 @@
 // the per-fragment exact reference is data (`rmse` etc.), since slices are an approximation.
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <numeric>
 #include <random>
 #include <string>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
-#include "oit/image_compare.hpp"
 #include "oit/fragment_lists.hpp"
+#include "oit/image_compare.hpp"
 #include "oit/metrics.hpp"
 #include "oit/reference.hpp"
 #include "oit/resolve_sort.hpp"
@@ -42,7 +41,8 @@ std::vector<LineVertex> make_hair(size_t segments, float alpha, unsigned seed) {
   constexpr int kPerStrand = 16;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  const glm::vec3 tones[] = {{0.45f, 0.30f, 0.18f}, {0.60f, 0.45f, 0.25f}, {0.30f, 0.20f, 0.12f}, {0.75f, 0.62f, 0.40f}};
+  const glm::vec3 tones[] = {
+      {0.45f, 0.30f, 0.18f}, {0.60f, 0.45f, 0.25f}, {0.30f, 0.20f, 0.12f}, {0.75f, 0.62f, 0.40f}};
   auto q = [](float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; };
   std::vector<LineVertex> v;
   v.reserve(segments * 2);
@@ -119,8 +119,10 @@ class LinesCase final : public CaseInstance {
                               &view_proj_[0][0]);
     // The hair lies within the head radius plus the longest strand: that depth range is cut into slices.
     const float reach = kHeadRadius + 16 * 0.06f;
-    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "nearDistance"), kCameraDistance - reach);
-    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "farDistance"), kCameraDistance + reach);
+    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "nearDistance"),
+                       kCameraDistance - reach);
+    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "farDistance"),
+                       kCameraDistance + reach);
     for (const char* phase : {"PHASE_LOCAL", "PHASE_BLOCKS", "PHASE_SCATTER"})
       split_.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
     emit_ = ctx.build({{GL_COMPUTE_SHADER, "lines/emit_indices.comp"}}, {});
@@ -295,12 +297,22 @@ class LinesExperiment final : public Experiment {
            "radix sort into depth slices, blended back to front; time and error against exact";
   }
   std::vector<ParamSpec> params() const override {
-    ParamSpec technique{"technique", "exact: linked lists + BASE-IMS resolve; slices: per-segment radix sort + blend",
-                        {"exact", "slices"}, {}, {"exact", "slices"}};
-    ParamSpec segments{"segments", "line segments (the poster's models: 90 K to 1.8 M)", {"90000", "620000", "1800000"},
-                       {"20000"}, {}, ParamSpec::Kind::Integer, 16, 50000000};
-    ParamSpec slices{"slices", "depth slices of the primitive sort (a power of two)", {"256"}, {}, {},
-                     ParamSpec::Kind::Integer, 2, 65536};
+    ParamSpec technique{"technique",
+                        "exact: linked lists + BASE-IMS resolve; slices: per-segment radix sort + blend",
+                        {"exact", "slices"},
+                        {},
+                        {"exact", "slices"}};
+    ParamSpec segments{"segments",
+                       "line segments (the poster's models: 90 K to 1.8 M)",
+                       {"90000", "620000", "1800000"},
+                       {"20000"},
+                       {},
+                       ParamSpec::Kind::Integer,
+                       16,
+                       50000000};
+    ParamSpec slices{
+        "slices", "depth slices of the primitive sort (a power of two)", {"256"}, {}, {}, ParamSpec::Kind::Integer, 2,
+        65536};
     ParamSpec alpha{"alpha", "opacity of every hair segment", {"0.3"}, {}, {}, ParamSpec::Kind::Number, 0, 1};
     return {technique, segments, slices, alpha};
   }

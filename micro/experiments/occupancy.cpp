@@ -28,8 +28,8 @@ struct Element {
   float v[4];
 };
 Element element(int x, int y, int i) {
-  return {{static_cast<float>((x * (i + 1) + y) & 1023), static_cast<float>((y * (i + 3)) & 511),
-           static_cast<float>(i), static_cast<float>((x ^ i) & 63)}};
+  return {{static_cast<float>((x * (i + 1) + y) & 1023), static_cast<float>((y * (i + 3)) & 511), static_cast<float>(i),
+           static_cast<float>((x ^ i) & 63)}};
 }
 
 class OccupancyCase final : public CaseInstance {
@@ -39,8 +39,9 @@ class OccupancyCase final : public CaseInstance {
         draws_(static_cast<int>(p.get_int("draws"))),
         dynamic_(p.get("variant") == "dynamic"),
         target_(ctx.width(), ctx.height()) {
-    program_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "occupancy/occupancy.frag"}},
-                         {{"SIZE", std::to_string(size_)}, {dynamic_ ? "VARIANT_DYNAMIC" : "VARIANT_UNROLLED", ""}});
+    program_ =
+        ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "occupancy/occupancy.frag"}},
+                  {{"SIZE", std::to_string(size_)}, {dynamic_ ? "VARIANT_DYNAMIC" : "VARIANT_UNROLLED", ""}});
     glProgramUniform1i(program_.get(), glGetUniformLocation(program_.get(), "zero"), 0);
     if (auto budget = find_budget(p.get("model_gpu"), ctx.gl().renderer)) {
       auto pred = predict_occupancy(*budget, size_, dynamic_);
@@ -110,20 +111,34 @@ class OccupancyExperiment final : public Experiment {
            "drawn `draws` times; ms for all draws";
   }
   std::vector<ParamSpec> params() const override {
-    ParamSpec variant{"variant", "dynamic: indexed by a uniform (local/scratch memory); unrolled: constant "
-                                 "indices after unrolling (registers where the compiler can)",
-                      {"dynamic", "unrolled"}, {}, {"dynamic", "unrolled"}};
-    ParamSpec size{"size", "elements in vec4 myArray[SIZE]", default_sizes(), {"1", "8", "32", "33", "64"}, {},
-                   ParamSpec::Kind::Integer, 1, 1024};
-    ParamSpec draws{"draws", "full-screen draws per repetition", {"64"}, {"8"}, {}, ParamSpec::Kind::Integer, 1, 100000};
-    ParamSpec model{"model_gpu", "GPU budget for predicted_occupancy: auto (from GL_RENDERER), or one of the table",
-                    {"auto"}, {}, {"auto"}};
+    ParamSpec variant{"variant",
+                      "dynamic: indexed by a uniform (local/scratch memory); unrolled: constant "
+                      "indices after unrolling (registers where the compiler can)",
+                      {"dynamic", "unrolled"},
+                      {},
+                      {"dynamic", "unrolled"}};
+    ParamSpec size{"size",
+                   "elements in vec4 myArray[SIZE]",
+                   default_sizes(),
+                   {"1", "8", "32", "33", "64"},
+                   {},
+                   ParamSpec::Kind::Integer,
+                   1,
+                   1024};
+    ParamSpec draws{"draws", "full-screen draws per repetition", {"64"}, {"8"},
+                    {},      ParamSpec::Kind::Integer,           1,      100000};
+    ParamSpec model{"model_gpu",
+                    "GPU budget for predicted_occupancy: auto (from GL_RENDERER), or one of the table",
+                    {"auto"},
+                    {},
+                    {"auto"}};
     for (const auto& g : gpu_budgets()) model.allowed.push_back(g.key);
     return {variant, size, draws, model};
   }
   std::vector<MetricSpec> metric_specs() const override {
-    return {{"predicted_occupancy", ValueType::Number, "", "resident warps or waves per SM / CU over the maximum, from "
-                                                          "the analytic model (model_gpu)"},
+    return {{"predicted_occupancy", ValueType::Number, "",
+             "resident warps or waves per SM / CU over the maximum, from "
+             "the analytic model (model_gpu)"},
             {"predicted_threads_per_sm", ValueType::Integer, "", "resident threads per SM the model predicts"},
             {"model_gpu_used", ValueType::Text, "", "the GPU whose budgets the model used, or unknown"},
             {"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"}};

@@ -32,38 +32,65 @@ class OitExperiment final : public Experiment {
     return "exact OIT (Knowles 2013 BMA, 2014 RBS): fragments captured from a scene file into per-pixel linked lists "
            "(PPLL) or packed per-pixel arrays (PPPA), resolved by "
            "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
-           "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, micro/oit/approx.cpp) "
+           "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, "
+           "micro/oit/approx.cpp) "
            "is validated against each technique's own CPU model, its error vs the exact image reported as data";
   }
   std::vector<ParamSpec> params() const override {
-    ParamSpec scene{"scene", "scene name in scenes/ (or a path to a scene .json)", {"planes", "hairball", "smoke"},
-                    {"planes", "hairball"}, {}};
-    ParamSpec view{"view", "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)",
-                   {"fwd", "rev"}, {}, {}};
-    ParamSpec technique{"technique", "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
-                                      "a stencil mask; CS-* a compute pass; RBS-G blocks sorted in place in global memory; "
-                                      "IS insertion, IMS insertion+merge, RBS-L register block sort; BMA-AUTO the "
-                                      "per-interval sort calibrated on this driver (cached); MLAB..unsorted: approximate",
-                        exact_technique_names(), {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"}, all_techniques()};
-    ParamSpec detail{"detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"},
-                     {"full", "small"}};
+    ParamSpec scene{"scene",
+                    "scene name in scenes/ (or a path to a scene .json)",
+                    {"planes", "hairball", "smoke"},
+                    {"planes", "hairball"},
+                    {}};
+    ParamSpec view{"view",
+                   "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)",
+                   {"fwd", "rev"},
+                   {},
+                   {}};
+    ParamSpec technique{"technique",
+                        "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
+                        "a stencil mask; CS-* a compute pass; RBS-G blocks sorted in place in global memory; "
+                        "IS insertion, IMS insertion+merge, RBS-L register block sort; BMA-AUTO the "
+                        "per-interval sort calibrated on this driver (cached); MLAB..unsorted: approximate",
+                        exact_technique_names(),
+                        {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"},
+                        all_techniques()};
+    ParamSpec detail{
+        "detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"}, {"full", "small"}};
     ParamSpec block{"block", "RBS block size MAX_REGISTERS (the paper: 32)", {"32"}, {"8"}, {"4", "8", "16", "32"}};
-    ParamSpec pool{"initial_pool", "first node pool in fragments (0: 4 per pixel); later frames size it from the last "
-                                   "count",
-                   {"0"}, {}, {}, ParamSpec::Kind::Integer, 0, 1e9};
-    ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)", {"0"}, {}, {},
-                        ParamSpec::Kind::Integer, 0, 4096};
-    ParamSpec cs_group{"cs_group", "CS-* work group in pixels (8-wide rows by default; PLATFORM.md: a stream-form "
-                                   "resolve was miscompiled with 4x4 groups on llvmpipe)",
-                       {"8x1"}, {}, {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}};
-    ParamSpec auto_cache{"bma_auto_cache", "BMA-AUTO: on reads and writes the per-driver choice cache "
-                                           "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
-                         {"on"}, {}, {"on", "off"}};
-    ParamSpec capture{"capture", "where the captured fragments live (Knowles 2014 section 2.2): PPLL per-pixel linked "
-                                 "lists (one pass, global counter, re-rendered when the pool overflows); PPPA packed "
-                                 "per-pixel arrays (a count pass, a prefix sum that sizes the buffer exactly, a fill "
-                                 "pass; no next pointers)",
-                      {"PPLL"}, {}, capture_storage_names()};
+    ParamSpec pool{"initial_pool",
+                   "first node pool in fragments (0: 4 per pixel); later frames size it from the last "
+                   "count",
+                   {"0"},
+                   {},
+                   {},
+                   ParamSpec::Kind::Integer,
+                   0,
+                   1e9};
+    ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)",
+                        {"0"},       {},
+                        {},          ParamSpec::Kind::Integer,
+                        0,           4096};
+    ParamSpec cs_group{"cs_group",
+                       "CS-* work group in pixels (8-wide rows by default; PLATFORM.md: a stream-form "
+                       "resolve was miscompiled with 4x4 groups on llvmpipe)",
+                       {"8x1"},
+                       {},
+                       {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}};
+    ParamSpec auto_cache{"bma_auto_cache",
+                         "BMA-AUTO: on reads and writes the per-driver choice cache "
+                         "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
+                         {"on"},
+                         {},
+                         {"on", "off"}};
+    ParamSpec capture{"capture",
+                      "where the captured fragments live (Knowles 2014 section 2.2): PPLL per-pixel linked "
+                      "lists (one pass, global counter, re-rendered when the pool overflows); PPPA packed "
+                      "per-pixel arrays (a count pass, a prefix sum that sizes the buffer exactly, a fill "
+                      "pass; no next pointers)",
+                      {"PPLL"},
+                      {},
+                      capture_storage_names()};
     // Each technique parameter is scoped to the techniques that read it, so a row carries only its own.
     const auto& exact = exact_technique_names();
     auto exact_but = [&](const std::string& skip) {
@@ -86,8 +113,9 @@ class OitExperiment final : public Experiment {
     std::vector<MetricSpec> m = fragment_metrics();
     std::vector<MetricSpec> own = {
         {"fragments_per_s", T::Number, "fragments/s", "capture throughput: total_fragments over the capture median"},
-        {"max_frags_used", T::Integer, "", "MAX_FRAGS the resolve was compiled with (max_frags, or the view's "
-                                           "next power of two when max_frags=0)"},
+        {"max_frags_used", T::Integer, "",
+         "MAX_FRAGS the resolve was compiled with (max_frags, or the view's "
+         "next power of two when max_frags=0)"},
         {"truncated_pixels", T::Integer, "", "pixels deeper than max_frags_used (their deepest fragments dropped)"},
         {"node_pool", T::Integer, "", "fragment slots allocated"},
         {"overflow_rerenders", T::Integer, "", "captures redone because the node pool overflowed"},

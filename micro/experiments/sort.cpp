@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "oit/packed_fragment.hpp"
 #include "core/registry.hpp"
-#include "oit/metrics.hpp"
 #include "gl/render_target.hpp"
+#include "oit/metrics.hpp"
+#include "oit/packed_fragment.hpp"
 
 namespace oitbench {
 
@@ -118,8 +118,9 @@ class SortCase final : public CaseInstance {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if (static_cast<GLint64>(bytes) > max_block)
-      throw Unsupported("sort: " + std::to_string(bytes) + " bytes of fragments exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
-                        std::to_string(max_block) + "); use a smaller --resolution");
+      throw Unsupported("sort: " + std::to_string(bytes) +
+                        " bytes of fragments exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" + std::to_string(max_block) +
+                        "); use a smaller --resolution");
 
     Defines defines = {{"SORT_N", std::to_string(n_)},
                        {"SORT_N_LOG2", std::to_string(ceil_log2(n_))},
@@ -129,13 +130,15 @@ class SortCase final : public CaseInstance {
     if (std::string assign = p.get("assign"); std::string(a.variant) == "insertion-naive") {
       if (assign == "listing") assign = "direct";
       std::string define = "SORT_ASSIGN_" + assign;
-      std::transform(define.begin(), define.end(), define.begin(), [](char c) { return c == '-' ? '_' : std::toupper(c); });
+      std::transform(define.begin(), define.end(), define.begin(),
+                     [](char c) { return c == '-' ? '_' : std::toupper(c); });
       defines.push_back({define, ""});
     }
     sort_source_ = ctx.shaders().source_id(a.file);
-    program_ = compute_ ? ctx.build({{GL_COMPUTE_SHADER, "sort/sort.comp"}}, defines)
-                        : ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "sort/sort.frag"}},
-                                    defines);
+    program_ = compute_
+                   ? ctx.build({{GL_COMPUTE_SHADER, "sort/sort.comp"}}, defines)
+                   : ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "sort/sort.frag"}},
+                               defines);
     GLuint prog = program_.get();
     glProgramUniform1i(prog, glGetUniformLocation(prog, "count"), n_);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "count_log2"), ceil_log2(n_));
@@ -174,7 +177,8 @@ class SortCase final : public CaseInstance {
     std::vector<Fragment> want(static_cast<size_t>(n_)), have(static_cast<size_t>(n_));
     for (int y = 0; y < height_; ++y)
       for (int x = 0; x < width_; ++x) {
-        size_t base = (static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)) * static_cast<size_t>(n_);
+        size_t base =
+            (static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)) * static_cast<size_t>(n_);
         const Fragment* g = &got[base];
         std::string where = "pixel (" + std::to_string(x) + "," + std::to_string(y) + ")";
         for (int i = 1; i < n_; ++i)
@@ -228,25 +232,45 @@ class SortExperiment final : public Experiment {
   std::vector<ParamSpec> params() const override {
     ParamSpec variant{"variant",
                       "the sort (shaders/sorts/<file>.glsl): insertion-naive (Listing 4.11), insertion-v1 (select-loop "
-                      "write), insertion-v2 (Listing 4.12), bubble / bubble-early (Listing 4.10), shell (4.13; miscompiled by llvmpipe), "
-                      "shell-offset (4.13 indexed like 4.11), shell-register (4.14), merge (bottom-up), bitonic, odd-even-merge (networks), rbs (Knowles "
+                      "write), insertion-v2 (Listing 4.12), bubble / bubble-early (Listing 4.10), shell (4.13; "
+                      "miscompiled by llvmpipe), "
+                      "shell-offset (4.13 indexed like 4.11), shell-register (4.14), merge (bottom-up), bitonic, "
+                      "odd-even-merge (networks), rbs (Knowles "
                       "Listing 5)",
-                      variant_names(), {"insertion-naive", "insertion-v2", "rbs"}, variant_names()};
+                      variant_names(),
+                      {"insertion-naive", "insertion-v2", "rbs"},
+                      variant_names()};
     // --quick stops at 16: rbs's 32-element network JITs for minutes on llvmpipe (once; Mesa's disk cache keeps it).
-    ParamSpec n{"n", "fragments per pixel", {"4", "8", "12", "16", "20", "24", "28", "32"}, {"8", "16"}, {},
-                ParamSpec::Kind::Integer, 2, 32};
-    ParamSpec stage{"stage", "full-screen fragment pass or compute pass (8x8 groups)", {"fragment", "compute"},
-                    {"fragment"}, {"fragment", "compute"}};
+    ParamSpec n{"n",
+                "fragments per pixel",
+                {"4", "8", "12", "16", "20", "24", "28", "32"},
+                {"8", "16"},
+                {},
+                ParamSpec::Kind::Integer,
+                2,
+                32};
+    ParamSpec stage{"stage",
+                    "full-screen fragment pass or compute pass (8x8 groups)",
+                    {"fragment", "compute"},
+                    {"fragment"},
+                    {"fragment", "compute"}};
     ParamSpec memory{"memory",
                      "registers: loop bounds are the constant n (loops unroll, indices become constants); local: "
                      "bounds are a uniform equal to n (the array stays dynamically indexed)",
-                     {"local", "registers"}, {}, {"local", "registers"}};
-    ParamSpec keys{"keys", "key distribution per pixel (CPU, from the seed)", {"random"}, {},
+                     {"local", "registers"},
+                     {},
+                     {"local", "registers"}};
+    ParamSpec keys{"keys",
+                   "key distribution per pixel (CPU, from the seed)",
+                   {"random"},
+                   {},
                    {"random", "sorted", "reverse", "duplicates", "few-distinct"}};
     ParamSpec assign{"assign",
                      "Table A.1: how insertion-naive writes a[j+1] = key: direct (the listing), loop (Listing 4.7), "
                      "switch, if-else; `listing` = each variant as published",
-                     {"listing"}, {}, {"listing", "direct", "loop", "switch", "if-else"}};
+                     {"listing"},
+                     {},
+                     {"listing", "direct", "loop", "switch", "if-else"}};
     return {variant, n, stage, memory, keys, assign};
   }
   std::vector<MetricSpec> metric_specs() const override {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "shaders/spinlock/bindings.h"
 #include "core/registry.hpp"
 #include "oit/storage_layout.hpp"
+#include "shaders/spinlock/bindings.h"
 
 namespace oitbench {
 
@@ -58,8 +58,8 @@ class SpinlockCase final : public CaseInstance {
       auto flavour = interlock_flavour(ctx.gl());
       if (flavour.empty()) throw Unsupported("no fragment shader interlock extension");
       define = "VARIANT_INTERLOCK_" + flavour;
-      metrics_["lock_extension"] = flavour == "INTEL" ? "GL_INTEL_fragment_shader_ordering"
-                                                      : "GL_" + flavour + "_fragment_shader_interlock";
+      metrics_["lock_extension"] =
+          flavour == "INTEL" ? "GL_INTEL_fragment_shader_ordering" : "GL_" + flavour + "_fragment_shader_interlock";
     } else {
       define = "VARIANT_" + variant;
       std::transform(define.begin(), define.end(), define.begin(),
@@ -69,8 +69,8 @@ class SpinlockCase final : public CaseInstance {
     Defines defines = StorageLayout::parse("ssbo").defines(width_, height_, capacity_);
     defines.push_back({define, ""});
     defines.push_back({"SPIN_CAP", p.get("spin_cap") + "u"});
-    program_ = ctx.build({{GL_VERTEX_SHADER, "common/layers.vert"}, {GL_FRAGMENT_SHADER, "spinlock/spinlock.frag"}},
-                         defines);
+    program_ =
+        ctx.build({{GL_VERTEX_SHADER, "common/layers.vert"}, {GL_FRAGMENT_SHADER, "spinlock/spinlock.frag"}}, defines);
     glProgramUniform1i(program_.get(), glGetUniformLocation(program_.get(), "zero"), 0);
     layer_base_ = glGetUniformLocation(program_.get(), "layerBase");
     glNamedBufferStorage(stats_.get(), sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -122,7 +122,8 @@ class SpinlockCase final : public CaseInstance {
         std::string where = "pixel (" + std::to_string(x) + "," + std::to_string(y) + ")";
         if (c != expected) {
           if (c < expected) lost += expected - c;
-          if (bad_pixels++ == 0) first = where + " count " + std::to_string(c) + ", expected " + std::to_string(expected);
+          if (bad_pixels++ == 0)
+            first = where + " count " + std::to_string(c) + ", expected " + std::to_string(expected);
           continue;
         }
         for (int l = 0; l < capacity_; ++l) want[l] = {spin_value(x, y, l), static_cast<std::uint32_t>(l)};
@@ -175,14 +176,21 @@ class SpinlockExperiment final : public Experiment {
     ParamSpec variant{"variant",
                       "naive (Listing 4.1), loop (4.2), helper-guard (4.3), interlock (ARB/NV/INTEL extension), "
                       "no-release (deliberately broken: never unlocks; for tests)",
-                      {"naive", "loop", "helper-guard", "interlock"}, {},
+                      {"naive", "loop", "helper-guard", "interlock"},
+                      {},
                       {"naive", "loop", "helper-guard", "interlock", "no-release"}};
-    ParamSpec layers{"layers", "overlapping screen-filling layers per draw, each inserting into every pixel",
-                     {"8", "32"}, {"8"}, {}, ParamSpec::Kind::Integer, 1, 256};
-    ParamSpec draws{"draws", "draws per repetition (the array holds layers * draws entries)", {"1"}, {}, {},
-                    ParamSpec::Kind::Integer, 1, 64};
-    ParamSpec cap{"spin_cap", "attempts before a fragment gives up (its update is lost and counted)", {"65536"}, {},
-                  {}, ParamSpec::Kind::Integer, 1, 1 << 30};
+    ParamSpec layers{"layers",    "overlapping screen-filling layers per draw, each inserting into every pixel",
+                     {"8", "32"}, {"8"},
+                     {},          ParamSpec::Kind::Integer,
+                     1,           256};
+    ParamSpec draws{"draws", "draws per repetition (the array holds layers * draws entries)",
+                    {"1"},   {},
+                    {},      ParamSpec::Kind::Integer,
+                    1,       64};
+    ParamSpec cap{"spin_cap", "attempts before a fragment gives up (its update is lost and counted)",
+                  {"65536"},  {},
+                  {},         ParamSpec::Kind::Integer,
+                  1,          1 << 30};
     // The compared parameter last: the variants of one grid point run one after another.
     return {layers, draws, cap, variant};
   }
@@ -198,7 +206,8 @@ class SpinlockExperiment final : public Experiment {
   std::string unsupported_reason(const GlInfo& gl, const ParamSet& p) const override {
     if (p.get("variant") == "interlock" && interlock_flavour(gl).empty())
       return "needs GL_ARB_fragment_shader_interlock, GL_NV_fragment_shader_interlock or "
-             "GL_INTEL_fragment_shader_ordering; " + gl.renderer + " has none";
+             "GL_INTEL_fragment_shader_ordering; " +
+             gl.renderer + " has none";
     if (p.get_int("layers") * p.get_int("draws") > 2048) return "layers * draws above 2048 entries per pixel";
     return "";
   }

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "core/registry.hpp"
-#include "oit/metrics.hpp"
 #include "gl/render_target.hpp"
+#include "oit/metrics.hpp"
 #include "oit/storage_layout.hpp"
 
 namespace oitbench {
@@ -30,9 +30,7 @@ StorageNode stencil_fragment(int x, int y, int l, int layers) {
 }
 
 // Rows [0, covered_rows) hold transparent geometry: at least one row, whole rows only.
-int covered_rows(int height, int coverage_percent) {
-  return std::max(1, (height * coverage_percent + 50) / 100);
-}
+int covered_rows(int height, int coverage_percent) { return std::max(1, (height * coverage_percent + 50) / 100); }
 
 class StencilCase final : public CaseInstance {
  public:
@@ -118,7 +116,8 @@ class StencilCase final : public CaseInstance {
         if (inside) {
           for (int l = 0; l < layers_; ++l) frags[l] = stencil_fragment(x, y, l, layers_);
           if (sort_)  // depth keys are a permutation: no ties
-            std::sort(frags.begin(), frags.end(), [](const StorageNode& a, const StorageNode& b) { return a[1] < b[1]; });
+            std::sort(frags.begin(), frags.end(),
+                      [](const StorageNode& a, const StorageNode& b) { return a[1] < b[1]; });
           float colour[3] = {0, 0, 0}, transmittance = 1.0f;
           for (const auto& f : frags) {
             float a = static_cast<float>(f[0] >> 24) / 255.0f;
@@ -134,8 +133,8 @@ class StencilCase final : public CaseInstance {
           bool bad = inside ? std::fabs(got[k] - ref[k]) > 1e-5f : got[k] != ref[k];
           if (!bad) continue;
           if (inside_bad + outside_bad == 0)
-            first = "pixel (" + std::to_string(x) + "," + std::to_string(y) + ")[" + std::to_string(k) + "] = " +
-                    std::to_string(got[k]) + ", CPU reference " + std::to_string(ref[k]) +
+            first = "pixel (" + std::to_string(x) + "," + std::to_string(y) + ")[" + std::to_string(k) +
+                    "] = " + std::to_string(got[k]) + ", CPU reference " + std::to_string(ref[k]) +
                     (inside ? " (inside the coverage)" : " (outside the coverage: must be untouched)");
           (inside ? inside_bad : outside_bad)++;
           break;
@@ -171,18 +170,31 @@ class StencilExperiment final : public Experiment {
            "capture pass drew (stencil) or everywhere (no-stencil), for a band covering `coverage` % of the screen";
   }
   std::vector<ParamSpec> params() const override {
-    ParamSpec variant{"variant", "no-stencil: resolve every pixel; stencil: capture writes a stencil mask, the "
-                                 "resolve runs where it is 1 (Listing 4.15)",
-                      {"no-stencil", "stencil"}, {}, {"no-stencil", "stencil"}};
-    ParamSpec coverage{"coverage", "percent of the screen's rows that receive transparent fragments",
-                       {"1", "10", "50", "100"}, {}, {}, ParamSpec::Kind::Integer, 1, 100};
-    ParamSpec resolve{"resolve", "blend: composite the nodes in storage order (MLAB, Table A.4); sort: insertion "
-                                 "sort by depth first (UMLAB, Table A.5)",
-                      {"blend", "sort"}, {"blend"}, {"blend", "sort"}};
+    ParamSpec variant{"variant",
+                      "no-stencil: resolve every pixel; stencil: capture writes a stencil mask, the "
+                      "resolve runs where it is 1 (Listing 4.15)",
+                      {"no-stencil", "stencil"},
+                      {},
+                      {"no-stencil", "stencil"}};
+    ParamSpec coverage{"coverage",
+                       "percent of the screen's rows that receive transparent fragments",
+                       {"1", "10", "50", "100"},
+                       {},
+                       {},
+                       ParamSpec::Kind::Integer,
+                       1,
+                       100};
+    ParamSpec resolve{"resolve",
+                      "blend: composite the nodes in storage order (MLAB, Table A.4); sort: insertion "
+                      "sort by depth first (UMLAB, Table A.5)",
+                      {"blend", "sort"},
+                      {"blend"},
+                      {"blend", "sort"}};
     ParamSpec nodes{"nodes", "nodes per pixel that the resolve reads", {"8"}, {"4"}, {}, ParamSpec::Kind::Integer, 1,
                     32};
-    ParamSpec layers{"layers", "transparent layers per covered pixel (at most nodes)", {"4"}, {"4"}, {},
-                     ParamSpec::Kind::Integer, 1, 32};
+    ParamSpec layers{
+        "layers", "transparent layers per covered pixel (at most nodes)", {"4"}, {"4"}, {}, ParamSpec::Kind::Integer, 1,
+        32};
     // The compared parameter last: stencil and no-stencil of one grid point are interleaved together.
     return {coverage, resolve, nodes, layers, variant};
   }

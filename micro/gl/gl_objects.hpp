@@ -52,11 +52,35 @@ using Query = Handle<delete_query>;
 using Program = Handle<delete_program>;
 using Shader = Handle<delete_shader>;
 
-inline Buffer make_buffer() { GLuint id = 0; glCreateBuffers(1, &id); return Buffer(id); }
-inline Texture make_texture(GLenum target) { GLuint id = 0; glCreateTextures(target, 1, &id); return Texture(id); }
-inline Framebuffer make_framebuffer() { GLuint id = 0; glCreateFramebuffers(1, &id); return Framebuffer(id); }
-inline Renderbuffer make_renderbuffer() { GLuint id = 0; glCreateRenderbuffers(1, &id); return Renderbuffer(id); }
-inline VertexArray make_vertex_array() { GLuint id = 0; glCreateVertexArrays(1, &id); return VertexArray(id); }
-inline Query make_query(GLenum target) { GLuint id = 0; glCreateQueries(target, 1, &id); return Query(id); }
+inline Buffer make_buffer() {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  return Buffer(id);
+}
+inline Texture make_texture(GLenum target) {
+  GLuint id = 0;
+  glCreateTextures(target, 1, &id);
+  return Texture(id);
+}
+inline Framebuffer make_framebuffer() {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  return Framebuffer(id);
+}
+inline Renderbuffer make_renderbuffer() {
+  GLuint id = 0;
+  glCreateRenderbuffers(1, &id);
+  return Renderbuffer(id);
+}
+inline VertexArray make_vertex_array() {
+  GLuint id = 0;
+  glCreateVertexArrays(1, &id);
+  return VertexArray(id);
+}
+inline Query make_query(GLenum target) {
+  GLuint id = 0;
+  glCreateQueries(target, 1, &id);
+  return Query(id);
+}
 
 }  // namespace oitbench::gl

@@ -33,8 +33,8 @@ std::vector<float> RenderTarget::read_rgba32f() const {
 
 std::vector<unsigned> RenderTarget::read_r32ui() const {
   std::vector<unsigned> px(static_cast<size_t>(width_) * static_cast<size_t>(height_));
-  glGetTextureImage(color_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(px.size() * sizeof(unsigned)),
-                    px.data());
+  glGetTextureImage(color_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                    static_cast<GLsizei>(px.size() * sizeof(unsigned)), px.data());
   return px;
 }
 

@@ -15,8 +15,8 @@ class RenderTarget {
   int height() const { return height_; }
   GLuint framebuffer() const { return fbo_.get(); }
   GLuint color_texture() const { return color_.get(); }
-  std::vector<float> read_rgba32f() const;     // row-major from the bottom row, 4 floats per pixel
-  std::vector<unsigned> read_r32ui() const;    // for GL_R32UI targets
+  std::vector<float> read_rgba32f() const;   // row-major from the bottom row, 4 floats per pixel
+  std::vector<unsigned> read_r32ui() const;  // for GL_R32UI targets
 
  private:
   int width_, height_;

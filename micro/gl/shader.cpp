@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <iterator>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -40,8 +40,8 @@ struct Assembler {
       auto candidate = (base / include).lexically_normal();
       if (std::filesystem::exists(candidate)) return candidate;
     }
-    throw ShaderError("shader include \"" + include + "\" not found (searched " + from_dir.string() +
-                      " and " + root.string() + ")");
+    throw ShaderError("shader include \"" + include + "\" not found (searched " + from_dir.string() + " and " +
+                      root.string() + ")");
   }
 
   std::string display_name(const std::filesystem::path& p) const {
@@ -165,8 +165,8 @@ gl::Program ShaderLibrary::compile_and_link(const std::vector<ShaderStage>& stag
       std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
       glGetShaderInfoLog(sh.get(), len, nullptr, log.data());
       log.resize(std::strlen(log.c_str()));
-      throw ShaderError("compile error in shaders/" + st.path + " with defines [" + format_defines(defines) +
-                        "]:\n" + map_shader_log(log, src));
+      throw ShaderError("compile error in shaders/" + st.path + " with defines [" + format_defines(defines) + "]:\n" +
+                        map_shader_log(log, src));
     }
     glAttachShader(program.get(), sh.get());
     shaders.push_back(std::move(sh));
@@ -199,7 +199,8 @@ uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
 
 std::filesystem::path default_program_cache_dir() {
   if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "oitbench" / "programs";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".cache" / "oitbench" / "programs";
+  if (const char* h = std::getenv("HOME"); h && *h)
+    return std::filesystem::path(h) / ".cache" / "oitbench" / "programs";
   return {};
 }
 

@@ -6,14 +6,14 @@ namespace oitbench {
 
 namespace {
 constexpr int kWarp = 32;
-constexpr int kBaseRegisters = 8;     // the shader's own registers besides the array
-constexpr int kRegisterGranule = 8;   // registers are allocated per thread in units of 8
+constexpr int kBaseRegisters = 8;    // the shader's own registers besides the array
+constexpr int kRegisterGranule = 8;  // registers are allocated per thread in units of 8
 }  // namespace
 
 const std::vector<GpuBudget>& gpu_budgets() {
   // Public per-SM(X) figures: CUDA occupancy tables / whitepapers (Kepler GK104/GK110, Pascal GP104, Hopper GH100).
   static const std::vector<GpuBudget> table = {
-      {"gtx670", "GTX 670", 65536, 2048, 63, 48 * 1024},       // GK104: 63 registers per thread
+      {"gtx670", "GTX 670", 65536, 2048, 63, 48 * 1024},        // GK104: 63 registers per thread
       {"gtx-titan", "GTX TITAN", 65536, 2048, 255, 48 * 1024},  // GK110
       {"gtx1080", "GTX 1080", 65536, 2048, 255, 48 * 1024},     // GP104: 48 KiB L1/tex per SM
       {"h100", "H100", 65536, 2048, 255, 256 * 1024},           // GH100: 256 KiB L1/shared per SM

@@ -8,12 +8,12 @@
 namespace oitbench {
 
 struct GpuBudget {
-  std::string key;          // value of the experiment's model_gpu parameter
-  std::string match;        // substring of GL_RENDERER that selects it under model_gpu=auto
-  int registers_per_sm;     // 32-bit registers
+  std::string key;       // value of the experiment's model_gpu parameter
+  std::string match;     // substring of GL_RENDERER that selects it under model_gpu=auto
+  int registers_per_sm;  // 32-bit registers
   int max_threads_per_sm;
   int max_registers_per_thread;
-  int local_cache_bytes;    // L1 that caches local (spilled/indexed) memory
+  int local_cache_bytes;  // L1 that caches local (spilled/indexed) memory
 };
 
 const std::vector<GpuBudget>& gpu_budgets();
@@ -21,7 +21,7 @@ std::optional<GpuBudget> find_budget(const std::string& model_gpu, const std::st
 
 struct OccupancyPrediction {
   int threads_per_sm = 0;
-  double occupancy = 0;   // threads_per_sm / max_threads_per_sm
+  double occupancy = 0;  // threads_per_sm / max_threads_per_sm
   bool in_registers = false;
 };
 

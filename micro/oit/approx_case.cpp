@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <sstream>
 #include <stdexcept>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "gl/render_target.hpp"
 #include "oit/approx.hpp"
@@ -52,18 +51,43 @@ std::vector<ParamSpec> approx_params() {
   const std::vector<std::string> arrays = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT"};
   const std::vector<std::string> guarded = {"AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT"};
   std::vector<ParamSpec> ps = {
-      {"nodes", "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16)", {"8"}, {}, {}, K::Integer, 2, 64},
-      {"storage", "node storage of the per-pixel array techniques (shaders/storage/)", {"ssbo"}, {},
+      {"nodes",
+       "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16)",
+       {"8"},
+       {},
+       {},
+       K::Integer,
+       2,
+       64},
+      {"storage",
+       "node storage of the per-pixel array techniques (shaders/storage/)",
+       {"ssbo"},
+       {},
        {"ssbo", "texture3d", "interleaved"}},
-      {"wboit_weight", "WBOIT depth weight: none (weighted average), eq7 (view distance), eq10 (window depth)",
-       {"eq7"}, {}, {"none", "eq7", "eq10"}},
-      {"sync", "per-pixel insertion: spinlock (Listing 4.3, capped) or interlock (ARB_fragment_shader_interlock)",
-       {"spinlock"}, {}, {"spinlock", "interlock"}},
-      {"guard", "numeric guards of the AT family and WBOIT (off: the deliberately unguarded variant the hard-case "
-                "tests use)",
-       {"on"}, {}, {"on", "off"}},
-      {"flicker_runs", "frames kept for the flicker metric (per-pixel variance across runs; 0: off)", {"4"}, {}, {},
-       K::Integer, 0, 64},
+      {"wboit_weight",
+       "WBOIT depth weight: none (weighted average), eq7 (view distance), eq10 (window depth)",
+       {"eq7"},
+       {},
+       {"none", "eq7", "eq10"}},
+      {"sync",
+       "per-pixel insertion: spinlock (Listing 4.3, capped) or interlock (ARB_fragment_shader_interlock)",
+       {"spinlock"},
+       {},
+       {"spinlock", "interlock"}},
+      {"guard",
+       "numeric guards of the AT family and WBOIT (off: the deliberately unguarded variant the hard-case "
+       "tests use)",
+       {"on"},
+       {},
+       {"on", "off"}},
+      {"flicker_runs",
+       "frames kept for the flicker metric (per-pixel variance across runs; 0: off)",
+       {"4"},
+       {},
+       {},
+       K::Integer,
+       0,
+       64},
   };
   ps[0].only_when("technique", arrays);
   ps[1].only_when("technique", arrays);
@@ -108,8 +132,8 @@ class ApproxCase final : public OitCase {
     // The fragments, once: the exact reference and every model work on these.
     size_t pixels = static_cast<size_t>(width_) * height_;
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
-    auto capture = build_capture_programs(*lists_, ctx,
-                                          {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
+    auto capture = build_capture_programs(
+        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
     for (const auto& prog : capture) set_view_proj(prog, vp);
     out_.bind();
     glDisable(GL_DEPTH_TEST);
@@ -142,7 +166,8 @@ class ApproxCase final : public OitCase {
         blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/at_blend.frag"}}, d);
         set_view_proj(blend_, vp);
       }
-      resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/resolve.frag"}}, d);
+      resolve_ =
+          ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/resolve.frag"}}, d);
     } else if (tech == T::Wboit) {
       d.push_back({"WEIGHT_" + upper(settings_.weight), ""});
       blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_accum.frag"}}, d);
@@ -152,7 +177,8 @@ class ApproxCase final : public OitCase {
       reveal_ = gl::make_texture(GL_TEXTURE_2D);
       glTextureStorage2D(reveal_.get(), 1, GL_R32F, width_, height_);
       glNamedFramebufferTexture(accum_.framebuffer(), GL_COLOR_ATTACHMENT1, reveal_.get(), 0);
-      resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
+      resolve_ = ctx.build(
+          {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
     } else {
       blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
@@ -269,8 +295,10 @@ class ApproxCase final : public OitCase {
     double model_max = 0;
     std::string first_off;
     for (size_t i = 0; i < rgb.size(); ++i) {
-      if (!std::isfinite(rgb[i])) ++nonfinite;
-      else if (rgb[i] < -1.0 / 255.0 || rgb[i] > 1.0 + 2.0 / 255.0) ++out_of_range;
+      if (!std::isfinite(rgb[i]))
+        ++nonfinite;
+      else if (rgb[i] < -1.0 / 255.0 || rgb[i] > 1.0 + 2.0 / 255.0)
+        ++out_of_range;
       double d = std::abs(static_cast<double>(rgb[i]) - model.rgb[i]);
       if (!std::isfinite(d) && std::isfinite(rgb[i]) != std::isfinite(model.rgb[i])) d = 1.0;
       if (!std::isfinite(d)) d = 0.0;  // both non-finite: the model predicts the failure
@@ -318,8 +346,10 @@ class ApproxCase final : public OitCase {
     if (out_of_range) problems.push_back(std::to_string(out_of_range) + " channel value(s) outside [0, 1]");
     if (capped) problems.push_back(std::to_string(capped) + " insertion(s) gave up on the spinlock (lost)");
     if (model_off)
-      problems.push_back(std::to_string(model_off) + " channel value(s) differ from the technique's CPU model by more "
-                         "than 3/255; first: " + first_off);
+      problems.push_back(std::to_string(model_off) +
+                         " channel value(s) differ from the technique's CPU model by more "
+                         "than 3/255; first: " +
+                         first_off);
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;

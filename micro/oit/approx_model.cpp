@@ -303,13 +303,27 @@ ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings&
       for (const auto& f : frags) {
         glm::vec4 ct(glm::vec3(f.colour) * f.colour.a, 1.0f - f.colour.a);
         switch (tech) {
-          case T::Mlab: insert_mlab(s, n, ct, f.depth); break;
-          case T::Umlab: insert_umlab(s, n, ct, f.depth); break;
-          case T::At: insert_at(s, n, ct.w, f.depth, false, st.unguarded); break;
-          case T::Hat: insert_at(s, n, ct.w, f.depth, true, st.unguarded); break;
-          case T::Uat: insert_uat(s, n, ct.w, f.depth); break;
-          case T::Laat: insert_laat(s, n, ct.w, f.depth); break;
-          default: insert_uhat(s, n, ct.w, f.depth, st.unguarded); break;
+          case T::Mlab:
+            insert_mlab(s, n, ct, f.depth);
+            break;
+          case T::Umlab:
+            insert_umlab(s, n, ct, f.depth);
+            break;
+          case T::At:
+            insert_at(s, n, ct.w, f.depth, false, st.unguarded);
+            break;
+          case T::Hat:
+            insert_at(s, n, ct.w, f.depth, true, st.unguarded);
+            break;
+          case T::Uat:
+            insert_uat(s, n, ct.w, f.depth);
+            break;
+          case T::Laat:
+            insert_laat(s, n, ct.w, f.depth);
+            break;
+          default:
+            insert_uhat(s, n, ct.w, f.depth, st.unguarded);
+            break;
         }
       }
       if (tech == T::Mlab || tech == T::Umlab) {
@@ -331,7 +345,8 @@ ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings&
           acc += glm::vec4(glm::vec3(f.colour) * w, w);
         }
         float total = visibility(s, kDepthEmpty, relative, laat), opacity = 1.0f - total;
-        if (!st.unguarded && acc.a > opacity * (1.0f + 1e-5f) + 1e-6f) acc = glm::vec4(glm::vec3(acc) * (opacity / acc.a), acc.a);
+        if (!st.unguarded && acc.a > opacity * (1.0f + 1e-5f) + 1e-6f)
+          acc = glm::vec4(glm::vec3(acc) * (opacity / acc.a), acc.a);
         c = glm::vec3(acc) + total * bg;
       }
     }

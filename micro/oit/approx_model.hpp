@@ -3,10 +3,9 @@
 // same fragments in the order they reached the pixel (the reversed per-pixel linked list, which on
 // a rasteriser that shades each pixel's fragments in submission order is also the order the
 // spinlock serialises them in). A GPU image is valid when it matches its own model.
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "oit/approx.hpp"
 #include "oit/fragment_storage.hpp"
@@ -15,9 +14,9 @@ namespace oitbench::oit {
 
 struct ApproxSettings {
   ApproxTechnique technique = ApproxTechnique::Mlab;
-  int nodes = 8;                 // per-pixel array techniques (LAAT stores one more: its head)
-  std::string weight = "eq7";    // WBOIT: none | eq7 | eq10
-  bool unguarded = false;        // the deliberately unguarded variant (hard-case tests)
+  int nodes = 8;                   // per-pixel array techniques (LAAT stores one more: its head)
+  std::string weight = "eq7";      // WBOIT: none | eq7 | eq10
+  bool unguarded = false;          // the deliberately unguarded variant (hard-case tests)
   glm::vec2 near_far{0.1f, 10.f};  // the projection's planes (WBOIT eq7 works on view distance)
 };
 

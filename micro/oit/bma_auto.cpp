@@ -1,12 +1,12 @@
 #include "oit/bma_auto.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <unistd.h>
 
 namespace oitbench::oit {
 
@@ -56,7 +56,11 @@ std::vector<std::string> interval_orders(const HostLists& lists, const ListStats
   for (size_t i = 0; i < out.size(); ++i) {
     if (!pairs[i]) continue;
     double f = static_cast<double>(in_order[i]) / static_cast<double>(pairs[i]);
-    out[i] = f >= 0.9 ? "sorted" : f >= 0.6 ? "mostly-sorted" : f > 0.4 ? "mixed" : f > 0.1 ? "mostly-reverse" : "reverse";
+    out[i] = f >= 0.9   ? "sorted"
+             : f >= 0.6 ? "mostly-sorted"
+             : f > 0.4  ? "mixed"
+             : f > 0.1  ? "mostly-reverse"
+                        : "reverse";
   }
   return out;
 }
@@ -147,7 +151,8 @@ BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, 
 std::string describe_choice(const std::vector<unsigned>& interval_tops, const BmaAutoChoice& choice) {
   std::string s;
   for (size_t i = 0; i < interval_tops.size() && i < choice.sort.size(); ++i)
-    if (choice.sort[i]) s += (s.empty() ? "" : " ") + std::to_string(interval_tops[i]) + ":" + sort_label(*choice.sort[i]);
+    if (choice.sort[i])
+      s += (s.empty() ? "" : " ") + std::to_string(interval_tops[i]) + ":" + sort_label(*choice.sort[i]);
   return s;
 }
 

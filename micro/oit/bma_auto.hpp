@@ -3,15 +3,15 @@
 // technique name. At prepare time each candidate sort (IS; IMS where it differs from IS, i.e.
 // intervals above 32; RBS-L) resolves each used interval's pixels under its stencil mask: one
 // warm-up draw (the JIT) and 5 timed draws, whose median counts (on the run's primary clock: the
-// CPU clock around glFinish on software renderers, GL_TIME_ELAPSED on hardware drivers); the fastest candidate whose pixels match the CPU reference wins. Choices are
-// cached in a small JSON file keyed on GL_RENDERER, GL_VERSION, the interval, the register
-// block size and the order the interval's lists arrive in (sorted ... reverse, 5 classes: insertion
-// sort's cost depends on it more than on anything else, so a choice made on sorted lists must not
-// be reused on reverse-sorted ones), so the calibration is paid once per driver and input class
-// (it is counted in compile_ms, never in the timed passes).
+// CPU clock around glFinish on software renderers, GL_TIME_ELAPSED on hardware drivers); the fastest candidate whose
+// pixels match the CPU reference wins. Choices are cached in a small JSON file keyed on GL_RENDERER, GL_VERSION, the
+// interval, the register block size and the order the interval's lists arrive in (sorted ... reverse, 5 classes:
+// insertion sort's cost depends on it more than on anything else, so a choice made on sorted lists must not be reused
+// on reverse-sorted ones), so the calibration is paid once per driver and input class (it is counted in compile_ms,
+// never in the timed passes).
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>

@@ -5,8 +5,7 @@
 
 namespace oitbench::oit {
 
-ComputeResolve::ComputeResolve(const CaseContext& ctx, Defines defines, glm::vec3 background, int group_x,
-                               int group_y)
+ComputeResolve::ComputeResolve(const CaseContext& ctx, Defines defines, glm::vec3 background, int group_x, int group_y)
     : group_x_(group_x), group_y_(group_y) {
   defines.push_back({"CS_GROUP_X", std::to_string(group_x)});
   defines.push_back({"CS_GROUP_Y", std::to_string(group_y)});

@@ -3,9 +3,8 @@
 // Knowles 2014's CUDA rows): shaders/oit/resolve.comp, one invocation per pixel in groups of
 // group_x x group_y, storing the composited colour straight into the target's colour texture in
 // the fragment-shader resolve's convention (rgb over the background, alpha 1 where resolved).
-#include <string>
-
 #include <glm/glm.hpp>
+#include <string>
 
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"

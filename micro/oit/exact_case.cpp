@@ -2,8 +2,6 @@
 // resolved by the sorts of Knowles, Leach, Zambetta 2013 (BMA) and 2014 (register-based block
 // sort, RBS), on the GPU or on the CPU (CPU-NATIVE). Validated against the CPU reference
 // compositor working on the same fragments read back from the GPU.
-#include "oit/oit_case.hpp"
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -15,16 +13,17 @@
 #include <sstream>
 #include <string>
 
-#include "gl/render_target.hpp"
 #include "core/stats.hpp"
+#include "gl/render_target.hpp"
 #include "oit/approx.hpp"
 #include "oit/bma_auto.hpp"
 #include "oit/compute_resolve.hpp"
 #include "oit/fragment_storage.hpp"
-#include "oit/packed_arrays.hpp"
 #include "oit/gpu_mesh.hpp"
 #include "oit/image_compare.hpp"
 #include "oit/image_io.hpp"
+#include "oit/oit_case.hpp"
+#include "oit/packed_arrays.hpp"
 #include "oit/reference.hpp"
 #include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
@@ -76,8 +75,8 @@ class ExactCase final : public OitCase {
     long long init = p.get_int("initial_pool");
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx,
                                    init > 0 ? static_cast<size_t>(init) : pixels * 4, bma_);
-    capture_ = build_capture_programs(*lists_, ctx,
-                                      {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
+    capture_ = build_capture_programs(
+        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
     set_view_projection(view_proj_);
 
     // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
@@ -85,13 +84,14 @@ class ExactCase final : public OitCase {
     overflow_rerenders_ += capture();
     ListStats stats = list_stats(lists_->read_back());
     long long forced = p.get_int("max_frags");
-    max_frags_ = forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(stats.peak_depth));
+    max_frags_ =
+        forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(stats.peak_depth));
     if (native_) return;
     if (compute_) {
       auto [gx, gy] = parse_group(p.get("cs_group"));
       note_sort(sort_of_technique(technique_), max_frags_);
-      compute_resolve_ = std::make_unique<ComputeResolve>(ctx, resolve_defines(sort_of_technique(technique_), max_frags_),
-                                                          scene_.background, gx, gy);
+      compute_resolve_ = std::make_unique<ComputeResolve>(
+          ctx, resolve_defines(sort_of_technique(technique_), max_frags_), scene_.background, gx, gy);
       return;
     }
     if (bma_) {
@@ -118,7 +118,8 @@ class ExactCase final : public OitCase {
   void set_view_projection(const glm::mat4& view_proj) override {
     view_proj_ = view_proj;
     for (const auto& prog : capture_)
-      glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE, &view_proj_[0][0]);
+      glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE,
+                                &view_proj_[0][0]);
   }
   GLuint result_texture() override {
     if (native_ && !native_out_.empty())  // CPU-NATIVE's image lives on the CPU: upload it for display
@@ -141,8 +142,10 @@ class ExactCase final : public OitCase {
       auto t = timer.pass("capture");
       auto start = std::chrono::steady_clock::now();
       overflow_rerenders_ += capture();
-      capture_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-      if (const auto* packed = dynamic_cast<const PackedArrays*>(lists_.get())) count_ms_.push_back(packed->last_count_ms());
+      capture_ms_.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      if (const auto* packed = dynamic_cast<const PackedArrays*>(lists_.get()))
+        count_ms_.push_back(packed->last_count_ms());
     }
     if (native_) {
       {
@@ -283,25 +286,29 @@ class ExactCase final : public OitCase {
     m["visit_errors"] = std::to_string(err.visit_errors);
     if (!dump_.empty()) write_images(rgba, ref, stats);
     if (err.visit_errors)
-      problems.push_back(std::to_string(err.visit_errors) + " pixel(s) not resolved exactly once (covered) or resolved "
+      problems.push_back(std::to_string(err.visit_errors) +
+                         " pixel(s) not resolved exactly once (covered) or resolved "
                          "though uncovered");
     if (err.bad_pixels)
-      problems.push_back(std::to_string(err.bad_pixels) + " pixel(s) differ from the CPU reference by more than 2/255; first: " +
-                         err.first_bad);
+      problems.push_back(std::to_string(err.bad_pixels) +
+                         " pixel(s) differ from the CPU reference by more than 2/255; first: " + err.first_bad);
     // llvmpipe ends a shader invocation's loops after 65535 iterations in total (gallivm's
     // LP_MAX_TGSI_LOOP_ITERATIONS): deep reverse insertion sorts and wide k-way merges pass it.
-    double loop_steps = std::max(0.5 * stats.peak_depth * stats.peak_depth, static_cast<double>(stats.peak_depth) * max_frags_ / std::max(1, block_));
+    double loop_steps = std::max(0.5 * stats.peak_depth * stats.peak_depth,
+                                 static_cast<double>(stats.peak_depth) * max_frags_ / std::max(1, block_));
     if (!problems.empty() && !native_ && ctx_.gl().is_software_renderer() && loop_steps > 65535)
-      problems.push_back("likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
-                         "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" + fmt(loop_steps) + " per pixel");
+      problems.push_back(
+          "likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
+          "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" +
+          fmt(loop_steps) + " per pixel");
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;
   }
 
  private:
-  // `oitbench render --out PATH.png`: PATH.png and PATH.pfm (the resolve, 8-bit and float), PATH-diff8.png (|image - reference| x 8),
-  // PATH-depth.png (depth complexity in false colour, black = empty, log scale up to the peak) and
+  // `oitbench render --out PATH.png`: PATH.png and PATH.pfm (the resolve, 8-bit and float), PATH-diff8.png (|image -
+  // reference| x 8), PATH-depth.png (depth complexity in false colour, black = empty, log scale up to the peak) and
   // PATH-depth-histogram.csv (pixels per depth complexity).
   void write_images(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats) const {
     const size_t pixels = stats.depth.size();
@@ -424,8 +431,8 @@ class ExactCase final : public OitCase {
       bool valid = interval_matches_reference(target_.read_rgba32f(), ref, stats, lo, hi, kTolerance);
       return CandidateResult{ms[ms.size() / 2], valid};
     };
-    auto_choice_ = choose_interval_sorts(interval_tops_, pixels, interval_orders(host, stats, interval_tops_), ctx_.gl(),
-                                         static_cast<unsigned>(block_), cache, use_auto_cache_, measure);
+    auto_choice_ = choose_interval_sorts(interval_tops_, pixels, interval_orders(host, stats, interval_tops_),
+                                         ctx_.gl(), static_cast<unsigned>(block_), cache, use_auto_cache_, measure);
   }
 
   void begin_resolve() {
@@ -442,7 +449,7 @@ class ExactCase final : public OitCase {
   void end_resolve() { glDisable(GL_BLEND); }
 
   std::string dump_;  // write the image, the x8 diff and the depth complexity (PNG, histogram CSV) here
-  CaseContext ctx_;  // a copy: the runner's shader library outlives the case (intervals compile on demand)
+  CaseContext ctx_;   // a copy: the runner's shader library outlives the case (intervals compile on demand)
   int width_, height_;
   bool wrong_result_;
   std::string technique_;
@@ -472,8 +479,9 @@ class ExactCase final : public OitCase {
 }  // namespace
 
 const std::vector<std::string>& exact_technique_names() {
-  static const std::vector<std::string> names = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS",   "BMA-IMS", "BMA-RBS-L",
-                                                 "CPU-NATIVE", "CS-IS", "CS-IMS",   "CS-RBS-L", "RBS-G",   "BMA-AUTO"};
+  static const std::vector<std::string> names = {"BASE-IS", "BASE-IMS",  "BASE-RBS-L", "BMA-IS",
+                                                 "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE", "CS-IS",
+                                                 "CS-IMS",  "CS-RBS-L",  "RBS-G",      "BMA-AUTO"};
   return names;
 }
 

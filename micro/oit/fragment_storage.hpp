@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "gl/gl_objects.hpp"
 #include "core/registry.hpp"
+#include "gl/gl_objects.hpp"
 #include "gl/shader.hpp"
 
 namespace oitbench::oit {

@@ -5,7 +5,9 @@
 namespace oitbench::oit {
 
 GpuMesh::GpuMesh(const Mesh& mesh)
-    : vertices_(gl::make_buffer()), indices_(gl::make_buffer()), vao_(gl::make_vertex_array()),
+    : vertices_(gl::make_buffer()),
+      indices_(gl::make_buffer()),
+      vao_(gl::make_vertex_array()),
       index_count_(mesh.indices.size()) {
   glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(Vertex)),
                        mesh.vertices.data(), 0);

@@ -26,9 +26,8 @@ ApproxError approx_error(const std::vector<float>& rgb, const std::vector<double
   return e;
 }
 
-
-ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats,
-                                  glm::vec3 background, int width, double tolerance) {
+ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& ref,
+                                  const ListStats& stats, glm::vec3 background, int width, double tolerance) {
   ImageError e;
   double sum_sq = 0;
   size_t pixels = ref.size() / 3;

@@ -2,10 +2,9 @@
 // Comparing an image with the exact reference composite, for every OIT case: the exact resolves'
 // validation (ImageError: tolerance, resolve counts) and the error statistics every approximate
 // technique and the lines experiment report as data (ApproxError).
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "oit/reference.hpp"
 
@@ -13,9 +12,9 @@ namespace oitbench::oit {
 
 struct ImageError {
   double max_abs_error = 0, rmse = 0;
-  size_t bad_pixels = 0;         // above the tolerance
-  size_t visit_errors = 0;       // covered pixels not resolved exactly once, or uncovered ones resolved
-  std::string first_bad;         // "pixel (x,y): got (r,g,b), reference (r,g,b)"
+  size_t bad_pixels = 0;    // above the tolerance
+  size_t visit_errors = 0;  // covered pixels not resolved exactly once, or uncovered ones resolved
+  std::string first_bad;    // "pixel (x,y): got (r,g,b), reference (r,g,b)"
 };
 // Compares a resolve's RGBA output (see above) with the reference; `tolerance` per channel.
 ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& reference,

@@ -29,8 +29,9 @@ inline std::vector<MetricSpec> fragment_metrics() {
 // Which library sort a case ran (shaders/sorts/): a micro-benchmark and a resolve that name the
 // same value ran the same code.
 inline MetricSpec sort_source_metric() {
-  return {"sort_source", ValueType::Text, "", "the shaders/sorts/ file(s) the case's sort ran, each as PATH@FNV-1a "
-                                              "of its text, joined by +; empty where no library sort ran"};
+  return {"sort_source", ValueType::Text, "",
+          "the shaders/sorts/ file(s) the case's sort ran, each as PATH@FNV-1a "
+          "of its text, joined by +; empty where no library sort ran"};
 }
 
 }  // namespace oitbench::oit

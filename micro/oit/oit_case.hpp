@@ -2,14 +2,13 @@
 // The oit experiment's cases (exact: exact_case.cpp; approximate: approx.cpp) as objects that the
 // experiment times and validates and that the interactive viewer (`oitbench view`) drives with its
 // own camera: the same code renders the benchmark and the picture a person looks at.
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
-#include "gl/gl.hpp"
 #include "core/registry.hpp"
+#include "gl/gl.hpp"
 
 namespace oitbench::oit {
 

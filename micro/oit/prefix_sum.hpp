@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "gl/gl_objects.hpp"
 #include "core/registry.hpp"
+#include "gl/gl_objects.hpp"
 
 namespace oitbench::oit {
 

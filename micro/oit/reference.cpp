@@ -115,5 +115,4 @@ void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool 
   for (auto& th : pool) th.join();
 }
 
-
 }  // namespace oitbench::oit

@@ -3,10 +3,9 @@
 // precision, the read-back fragments sorted near-to-far with a deterministic tie-break and
 // composited front to back with "over") and the CPU-NATIVE resolve (native threads); the image
 // comparison every resolve is validated with is in image_compare.hpp.
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "oit/fragment_storage.hpp"
 
@@ -15,11 +14,11 @@ namespace oitbench::oit {
 struct ListStats {
   size_t total_fragments = 0, covered_pixels = 0;
   unsigned peak_depth = 0;
-  double mean_depth = 0;             // over covered pixels
-  std::vector<unsigned> depth;       // per pixel
-  std::vector<bool> tied;            // per pixel: fragments of different colours at exactly the same depth
+  double mean_depth = 0;        // over covered pixels
+  std::vector<unsigned> depth;  // per pixel
+  std::vector<bool> tied;       // per pixel: fragments of different colours at exactly the same depth
   size_t tied_pixels = 0;
-  std::string error;                 // a broken list (cycle, index outside the pool), else empty
+  std::string error;  // a broken list (cycle, index outside the pool), else empty
 };
 ListStats list_stats(const HostLists& lists);
 

@@ -15,10 +15,14 @@ ResolveSort sort_of_technique(const std::string& technique) {
 
 std::string sort_label(ResolveSort sort) {
   switch (sort) {
-    case ResolveSort::IS: return "IS";
-    case ResolveSort::IMS: return "IMS";
-    case ResolveSort::RBS_L: return "RBS-L";
-    case ResolveSort::RBS_G: return "RBS-G";
+    case ResolveSort::IS:
+      return "IS";
+    case ResolveSort::IMS:
+      return "IMS";
+    case ResolveSort::RBS_L:
+      return "RBS-L";
+    case ResolveSort::RBS_G:
+      return "RBS-G";
   }
   return "?";
 }
@@ -47,12 +51,14 @@ Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block) {
 
 std::vector<std::string> sort_files(ResolveSort sort, unsigned max_frags) {
   switch (sort) {
-    case ResolveSort::IS: return {"sorts/insertion.glsl"};
+    case ResolveSort::IS:
+      return {"sorts/insertion.glsl"};
     case ResolveSort::IMS:
       if (max_frags > 32) return {"sorts/insertion.glsl", "sorts/merge.glsl"};
       return {"sorts/insertion.glsl"};
     case ResolveSort::RBS_L:
-    case ResolveSort::RBS_G: return {"sorts/register_sort.glsl"};
+    case ResolveSort::RBS_G:
+      return {"sorts/register_sort.glsl"};
   }
   return {};
 }

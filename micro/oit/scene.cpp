@@ -1,14 +1,14 @@
 #include "oit/scene.hpp"
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <sstream>
-
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include "core/data_dirs.hpp"
 #include "core/text_position.hpp"
@@ -18,7 +18,6 @@ namespace oitbench::oit {
 namespace {
 
 using nlohmann::json;
-
 
 // nlohmann keeps no positions for values: find the line of a JSON path by searching for its keys
 // in order ("/materials/glass/alpha" -> "materials", then "glass", then "alpha" after it).
@@ -42,8 +41,8 @@ class Node {
   [[noreturn]] void fail(const std::string& what) const {
     std::string ptr;
     for (const auto& k : keys_) ptr += "/" + k;
-    throw SceneError(path_ + ":" + line_column(text_, locate(text_, keys_)) + ": " + (ptr.empty() ? "/" : ptr) +
-                     ": " + what);
+    throw SceneError(path_ + ":" + line_column(text_, locate(text_, keys_)) + ": " + (ptr.empty() ? "/" : ptr) + ": " +
+                     what);
   }
   Node child(const std::string& key) const {
     auto k = keys_;
@@ -114,7 +113,7 @@ SubmitOrder parse_order(const Node& n) {
 
 struct Builder {
   Mesh mesh;
-  std::vector<glm::vec3> centroids;        // per group
+  std::vector<glm::vec3> centroids;               // per group
   std::vector<std::pair<size_t, size_t>> groups;  // [first index, index count)
   void begin() { groups.push_back({mesh.indices.size(), 0}); }
   void end(glm::vec3 centroid) {
@@ -160,7 +159,9 @@ glm::vec3 hue(double h) {
   return glm::clamp(c, 0.0f, 1.0f);
 }
 
-double param(const json& p, const char* key, double fallback) { return p.contains(key) ? p[key].get<double>() : fallback; }
+double param(const json& p, const char* key, double fallback) {
+  return p.contains(key) ? p[key].get<double>() : fallback;
+}
 
 // The paper's synthetic scene: `count` planes facing +z, evenly spaced from z = +depth/2 (plane 0)
 // to -depth/2, each a different hue, generated nearest-to-+z first.
@@ -205,7 +206,8 @@ void gen_hairball(Builder& b, const json& p, const Material& m) {
       unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
       for (int i = 0; i < sides; ++i) {
         double a = 6.283185307179586 * i / sides;
-        glm::vec3 off = (u * static_cast<float>(std::cos(a)) + v * static_cast<float>(std::sin(a))) * static_cast<float>(r);
+        glm::vec3 off =
+            (u * static_cast<float>(std::cos(a)) + v * static_cast<float>(std::sin(a))) * static_cast<float>(r);
         b.vertex(pos + off, c);
         b.vertex(next + off, c);
       }
@@ -417,21 +419,40 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, smoke, model");
     obj.generator = o.child("generator").str();
     if (std::find(kGenerators.begin(), kGenerators.end(), obj.generator) == kGenerators.end())
-      o.child("generator").fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, smoke or model");
+      o.child("generator")
+          .fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, smoke or model");
     if (obj.generator == "model") {
       if (!o.has("file")) o.fail("expected \"file\": the model file (searched in model_roots)");
       obj.file = o.child("file").str();
     }
     if (!o.has("material")) o.fail("expected \"material\": the name of one of the scene's materials");
     obj.material = o.child("material").str();
-    bool known = std::any_of(s.materials.begin(), s.materials.end(), [&](const Material& m) { return m.name == obj.material; });
+    bool known =
+        std::any_of(s.materials.begin(), s.materials.end(), [&](const Material& m) { return m.name == obj.material; });
     if (!known) o.child("material").fail("no material named \"" + obj.material + "\" in \"materials\"");
     for (const char* key : {"params", "small"}) {
       if (!o.has(key)) continue;
       auto pn = o.child(key);
-      pn.expect_object({"count", "half_size", "depth", "strands", "segments", "sides", "segment_length", "tube_radius",
-                        "radius", "wiggle", "seed", "size", "spread", "height", "grid", "spacing", "colour_mix",
-                        "model_opacity", "alpha_by_material", "exclude_materials"});
+      pn.expect_object({"count",
+                        "half_size",
+                        "depth",
+                        "strands",
+                        "segments",
+                        "sides",
+                        "segment_length",
+                        "tube_radius",
+                        "radius",
+                        "wiggle",
+                        "seed",
+                        "size",
+                        "spread",
+                        "height",
+                        "grid",
+                        "spacing",
+                        "colour_mix",
+                        "model_opacity",
+                        "alpha_by_material",
+                        "exclude_materials"});
       for (const auto& [pk, pv] : pn.raw().items()) {
         auto v = pn.child(pk);
         if (pk == "model_opacity") {
@@ -502,10 +523,14 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail) {
     if (detail == Detail::Small && o.small.is_object())
       for (const auto& [k, v] : o.small.items()) p[k] = v;
     const Material& m = scene.material(o.material);
-    if (o.generator == "planes") gen_planes(b, p, m);
-    else if (o.generator == "hairball") gen_hairball(b, p, m);
-    else if (o.generator == "model") gen_model(b, p, m, resolve_model(scene, o.file));
-    else gen_smoke(b, p, m, view);
+    if (o.generator == "planes")
+      gen_planes(b, p, m);
+    else if (o.generator == "hairball")
+      gen_hairball(b, p, m);
+    else if (o.generator == "model")
+      gen_model(b, p, m, resolve_model(scene, o.file));
+    else
+      gen_smoke(b, p, m, view);
   }
   if (view.order == SubmitOrder::AsGenerated) return std::move(b.mesh);
   // Reorder whole primitives by their centroid's distance to the eye (stable: ties keep generation order).

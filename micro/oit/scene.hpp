@@ -37,24 +37,24 @@ struct View {
 };
 
 struct SceneObject {
-  std::string generator;   // planes | hairball | smoke | model
-  std::string file;        // model: the model file, resolved against the scene's model_roots
-  nlohmann::json params;   // the generator's parameters, "small" overrides already applied when asked
-  nlohmann::json small;    // overrides for the small (quick/test) size
+  std::string generator;  // planes | hairball | smoke | model
+  std::string file;       // model: the model file, resolved against the scene's model_roots
+  nlohmann::json params;  // the generator's parameters, "small" overrides already applied when asked
+  nlohmann::json small;   // overrides for the small (quick/test) size
   std::string material;
 };
 
 struct SceneDesc {
   std::string name, description, path;
   glm::vec3 background{1.0f};
-  std::vector<std::string> effects;  // e.g. "transparency"
+  std::vector<std::string> effects;      // e.g. "transparency"
   std::vector<std::string> model_roots;  // folders searched for model files (after the scene's own folder)
   std::vector<Material> materials;
   std::vector<SceneObject> objects;
   std::vector<View> views;
 
-  const View& view(const std::string& name) const;            // throws SceneError listing the views
-  const Material& material(const std::string& name) const;    // throws SceneError
+  const View& view(const std::string& name) const;          // throws SceneError listing the views
+  const Material& material(const std::string& name) const;  // throws SceneError
 };
 
 enum class Detail { Full, Small };

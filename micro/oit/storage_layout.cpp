@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "shaders/storage/bindings.h"
 #include "core/registry.hpp"
+#include "shaders/storage/bindings.h"
 
 namespace oitbench {
 
@@ -46,10 +46,14 @@ std::vector<std::string> StorageLayout::names() {
 
 std::string StorageLayout::name() const {
   switch (kind) {
-    case Kind::Ssbo: return "ssbo";
-    case Kind::Texture3d: return "texture3d";
-    case Kind::TexBuffer: return "texbuffer";
-    case Kind::Interleaved: break;
+    case Kind::Ssbo:
+      return "ssbo";
+    case Kind::Texture3d:
+      return "texture3d";
+    case Kind::TexBuffer:
+      return "texbuffer";
+    case Kind::Interleaved:
+      break;
   }
   return "interleaved-" + std::to_string(group_x) + "x" + std::to_string(group_y) + "-a" + std::to_string(align);
 }

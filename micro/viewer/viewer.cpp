@@ -435,8 +435,7 @@ class Viewer {
     } else if (settings_.uses_nodes()) {
       tech += "   nodes " + settings_.get("nodes");
     }
-    if (settings_.is_exact())
-      tech += "   capture: " + settings_.get("capture");
+    if (settings_.is_exact()) tech += "   capture: " + settings_.get("capture");
     lines.push_back({tech});
 
     std::string passes;

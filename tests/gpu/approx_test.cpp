@@ -1,10 +1,11 @@
 // oit's approximate techniques: every storage layout gives the technique's image, the validator
 // (the technique's own CPU model) fails on a wrong result and on the wrong model, interlock is
 // reported unsupported where the extension is missing, and flicker is measured across frames.
+#include "oit/approx.hpp"
+
 #include <filesystem>
 #include <set>
 
-#include "oit/approx.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {
@@ -13,7 +14,7 @@ class Approx : public GlTest {};
 
 namespace {
 std::map<std::string, std::string> small(const std::string& technique, const std::string& storage = "ssbo") {
-  return {{"scene", "hairball"}, {"view", "rev"},     {"technique", technique}, {"detail", "small"},
+  return {{"scene", "hairball"}, {"view", "rev"},      {"technique", technique}, {"detail", "small"},
           {"nodes", "4"},        {"storage", storage}, {"flicker_runs", "3"}};
 }
 }  // namespace

@@ -45,10 +45,11 @@ TEST_P(QuickRun, OccupancyWritesValidRowsWithEveryColumn) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto rows = read_csv_rows(out);
   ASSERT_EQ(rows.size(), 4u);  // 2 variants x 2 sizes, one `total` row each
-  for (const char* col : {"schema", "experiment", "variant", "pass", "status", "valid", "backend", "gl_vendor",
-                          "gl_renderer", "gl_version", "width", "height", "reps", "warmup", "median_ms", "mad_ms",
-                          "min_ms", "max_ms", "mean_ms", "stddev_ms", "cpu_median_ms", "gpu_median_ms", "timer",
-                          "compile_ms", "git_sha", "timestamp_utc", "lp_num_threads", "size", "draws"})
+  for (const char* col : {"schema",  "experiment",    "variant",        "pass",          "status", "valid",
+                          "backend", "gl_vendor",     "gl_renderer",    "gl_version",    "width",  "height",
+                          "reps",    "warmup",        "median_ms",      "mad_ms",        "min_ms", "max_ms",
+                          "mean_ms", "stddev_ms",     "cpu_median_ms",  "gpu_median_ms", "timer",  "compile_ms",
+                          "git_sha", "timestamp_utc", "lp_num_threads", "size",          "draws"})
     for (auto& row : rows) EXPECT_FALSE(row[col].empty()) << "column " << col << " empty";
   for (auto& row : rows) {
     EXPECT_EQ(row["valid"], "1") << row["reason"];
@@ -140,8 +141,8 @@ TEST(Cli, AppendingOntoADifferentHeaderIsRefused) {
 
 TEST(Cli, AppendingOntoTheSameHeaderKeepsEarlierRows) {
   auto out = temp_dir("append") / "same.csv";
-  std::vector<std::string> args = {"run", "occupancy", "--quick", "--set", "size=1", "--set", "variant=dynamic",
-                                   "--out", out.string(), "--no-progress"};
+  std::vector<std::string> args = {"run",   "occupancy",       "--quick", "--set",      "size=1",
+                                   "--set", "variant=dynamic", "--out",   out.string(), "--no-progress"};
   ASSERT_EQ(run_oitbench(args).exit_code, 0);
   ASSERT_EQ(run_oitbench(args).exit_code, 0);
   EXPECT_EQ(read_csv_rows(out).size(), 2u);
@@ -160,10 +161,10 @@ TEST(Cli, RawSamplesHaveOneRowPerRepetition) {
 TEST(Cli, CtrlCLeavesAParseableCsvWithTheFinishedRows) {
   auto out = temp_dir("interrupt") / "i.csv";
   // 200 slow cases (past the unrolling cliff), one at a time; Ctrl-C once two rows are on disk.
-  auto r = run_oitbench_interrupted({"run", "occupancy", "--set", "variant=unrolled", "--set", "size=33..232",
-                                     "--resolution", "200x150", "--set", "draws=16", "--reps", "2",
-                                     "--no-interleave", "--out", out.string(), "--no-progress"},
-                                    out, 2, SIGINT);
+  auto r = run_oitbench_interrupted(
+      {"run", "occupancy", "--set", "variant=unrolled", "--set", "size=33..232", "--resolution", "200x150", "--set",
+       "draws=16", "--reps", "2", "--no-interleave", "--out", out.string(), "--no-progress"},
+      out, 2, SIGINT);
   EXPECT_EQ(r.exit_code, 130) << r.err;
   EXPECT_TRUE(contains(r.err, "interrupted")) << r.err;
   auto rows = read_csv_rows(out);
@@ -180,10 +181,10 @@ TEST(Cli, TheWatchdogEndsAHungCaseAndTheRunGoesOn) {
   auto out = temp_dir("hang") / "h.csv";
   // On llvmpipe a "hang" is finite (every shader loop ends after 65535 iterations): at 400x300 the hung
   // case would run ~35 s on a quiet 2-core VM, well past the 4 s watchdog (at the quick 200x150, 9 s).
-  auto r = run_oitbench({"run", "occupancy", "--quick", "--resolution", "400x300", "--set", "variant=dynamic", "--set",
-                         "size=1", "--set", "fault=hang,none", "--isolate", "always", "--timeout", "4", "--out",
-                         out.string(), "--no-progress"},
-                        120);
+  auto r = run_oitbench(
+      {"run", "occupancy", "--quick", "--resolution", "400x300", "--set", "variant=dynamic", "--set", "size=1", "--set",
+       "fault=hang,none", "--isolate", "always", "--timeout", "4", "--out", out.string(), "--no-progress"},
+      120);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   auto rows = read_csv_rows(out);
   ASSERT_EQ(rows.size(), 2u);
@@ -210,7 +211,8 @@ TEST(Cli, RenderWritesTheImageDiffAndDepthComplexity) {
   auto r = run_oitbench({"render", "--scene", "planes", "--view", "rev", "--technique", "BASE-IS", "--resolution",
                          "64x64", "--set", "detail=small", "--out", (dir / "planes.png").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"planes.png", "planes.pfm", "planes-diff8.png", "planes-depth.png", "planes-depth-histogram.csv", "planes.csv"})
+  for (const char* f :
+       {"planes.png", "planes.pfm", "planes-diff8.png", "planes-depth.png", "planes-depth-histogram.csv", "planes.csv"})
     EXPECT_GT(std::filesystem::file_size(dir / f), 0u) << f;
   EXPECT_EQ(std::filesystem::file_size(dir / "planes.pfm"), std::string("PF\n64 64\n-1.0\n").size() + 64 * 64 * 12);
   auto hist = read_csv_rows(dir / "planes-depth-histogram.csv");

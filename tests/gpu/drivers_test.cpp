@@ -22,14 +22,16 @@ TEST(Drivers, InfoListsLlvmpipeAndZinkAsUsable) {
 TEST(Drivers, SmokePresetRunsValidOnZinkAndRowsNameTheDriver) {
   auto dir = temp_dir("zink");
   auto out = dir / "smoke.csv";
-  auto r = run_oitbench({"run", "--preset", "smoke-test", "--driver", "zink", "--out", out.string(), "--no-progress"}, 600);
+  auto r =
+      run_oitbench({"run", "--preset", "smoke-test", "--driver", "zink", "--out", out.string(), "--no-progress"}, 600);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(contains(r.err, "XDG_RUNTIME_DIR")) << "zink's warning should be silenced: " << r.err;
   auto rows = read_csv_rows(out);
   ASSERT_FALSE(rows.empty());
   std::set<std::string> experiments;
   for (const auto& row : rows) {
-    EXPECT_EQ(row.at("status"), "ok") << row.at("experiment") << " " << row.at("parameters") << ": " << row.at("reason");
+    EXPECT_EQ(row.at("status"), "ok") << row.at("experiment") << " " << row.at("parameters") << ": "
+                                      << row.at("reason");
     EXPECT_EQ(row.at("driver"), "zink-lavapipe");
     EXPECT_TRUE(contains(row.at("gl_renderer"), "zink")) << row.at("gl_renderer");
     experiments.insert(row.at("experiment"));

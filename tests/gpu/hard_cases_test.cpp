@@ -33,12 +33,8 @@ std::vector<std::string> all_techniques() {
 bool approximate(const std::string& t) { return oit::is_approx_technique(t); }
 
 std::map<std::string, std::string> params(const std::string& scene, const std::string& technique) {
-  return {{"scene", scene},
-          {"view", "fwd"},
-          {"technique", technique},
-          {"detail", "small"},
-          {"block", "8"},
-          {"nodes", "4"},  // fewer nodes than most hard scenes have layers: the compression runs
+  return {{"scene", scene},     {"view", "fwd"}, {"technique", technique}, {"detail", "small"},
+          {"block", "8"},       {"nodes", "4"},  // fewer nodes than most hard scenes have layers: the compression runs
           {"flicker_runs", "2"}};
 }
 

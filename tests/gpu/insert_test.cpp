@@ -35,16 +35,16 @@ TEST_F(Insert, LocalMemoryFormMatchesToo) {
 // array is dynamically indexed (memory=local); the register form is correct. The validator must
 // report it; a driver that compiles it correctly passes.
 TEST_F(Insert, EarlyOutLocalIsValidatedNotTrusted) {
-  auto v = run_case("insert", {{"variant", "early-out"}, {"memory", "local"}, {"keys", "back"}, {"size", "8"},
-                               {"repeat", "1"}},
+  auto v = run_case("insert",
+                    {{"variant", "early-out"}, {"memory", "local"}, {"keys", "back"}, {"size", "8"}, {"repeat", "1"}},
                     kSmall);
   if (!v.valid) RecordProperty("early_out_local_driver_bug", v.reason);
   EXPECT_TRUE(v.valid || gl().is_software_renderer()) << "early-out local invalid on a hardware driver: " << v.reason;
 }
 
 TEST_F(Insert, ValidatorCatchesAChangedPayload) {
-  auto v = run_case("insert", {{"variant", "early-out"}, {"size", "8"}, {"repeat", "3"}, {"fault", "wrong-result"}},
-                    kSmall);
+  auto v =
+      run_case("insert", {{"variant", "early-out"}, {"size", "8"}, {"repeat", "3"}, {"fault", "wrong-result"}}, kSmall);
   EXPECT_FALSE(v.valid);
   EXPECT_EQ(v.metrics.at("mismatched_pixels"), "1");
   EXPECT_NE(v.reason.find("pixel (1,1)[7]"), std::string::npos) << v.reason;

@@ -27,7 +27,8 @@ TEST_F(Layout, InterleavedGroupsThatDoNotDivideTheScreen) {
 TEST_F(Layout, OverlappingLayersAndScatteredWritesStayConsistent) {
   for (const char* layout : {"ssbo", "texture3d", "interleaved-2x4-a1"})
     for (const char* order : {"sequential", "scattered"}) {
-      auto v = run_case("layout", {{"layout", layout}, {"nodes", "8"}, {"layers", "4"}, {"draws", "2"}, {"order", order}});
+      auto v =
+          run_case("layout", {{"layout", layout}, {"nodes", "8"}, {"layers", "4"}, {"draws", "2"}, {"order", order}});
       // Lost updates are allowed here (and counted); inconsistent nodes never are.
       EXPECT_TRUE(v.valid) << layout << " " << order << ": " << v.reason;
       EXPECT_EQ(v.metrics.at("inconsistent_nodes"), "0");

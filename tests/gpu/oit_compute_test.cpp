@@ -4,9 +4,8 @@
 // when their output is perturbed.
 #include <cstdlib>
 #include <fstream>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "support/test_support.hpp"
 
@@ -102,8 +101,10 @@ TEST_F(OitCompute, BmaAutoKeysTheCacheOnTheListOrder) {
   auto rev = run_case("oit", small("planes", "rev", "BMA-AUTO"));
   ASSERT_TRUE(rev.valid) << rev.reason;
   EXPECT_EQ(rev.metrics.at("bma_auto_source"), "calibrated");
-  EXPECT_NE(fwd.metrics.at("bma_auto_timings").find("32/sorted:"), std::string::npos) << fwd.metrics.at("bma_auto_timings");
-  EXPECT_NE(rev.metrics.at("bma_auto_timings").find("32/reverse:"), std::string::npos) << rev.metrics.at("bma_auto_timings");
+  EXPECT_NE(fwd.metrics.at("bma_auto_timings").find("32/sorted:"), std::string::npos)
+      << fwd.metrics.at("bma_auto_timings");
+  EXPECT_NE(rev.metrics.at("bma_auto_timings").find("32/reverse:"), std::string::npos)
+      << rev.metrics.at("bma_auto_timings");
   auto cache = nlohmann::json::parse(std::ifstream(cache_ / "oitbench" / "bma_auto.json"));
   EXPECT_EQ(cache.size(), 2u);
 }

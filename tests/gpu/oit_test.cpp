@@ -39,7 +39,8 @@ TEST_F(Oit, AnOversizedPoolShrinksBeforeTheNextFrameNotAfterIt) {
 
 TEST_F(Oit, EveryResolveMatchesTheCpuReference) {
   for (const char* technique : {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS", "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE"})
-    for (auto [scene, view] : {std::pair{"planes", "fwd"}, {"planes", "rev"}, {"hairball", "fwd"}, {"hairball", "rev"}}) {
+    for (auto [scene, view] :
+         {std::pair{"planes", "fwd"}, {"planes", "rev"}, {"hairball", "fwd"}, {"hairball", "rev"}}) {
       auto v = run_case("oit", small(scene, view, technique));
       EXPECT_TRUE(v.valid) << technique << " " << scene << " " << view << ": " << v.reason;
       EXPECT_EQ(v.metrics.at("bad_pixels"), "0");
@@ -120,7 +121,8 @@ TEST_F(Oit, QuickRunFromTheCommandLine) {
   int ok = 0;
   for (const auto& row : rows) ok += row.at("status") == "ok" && row.at("valid") == "1";
   EXPECT_EQ(ok, static_cast<int>(rows.size()));
-  EXPECT_GE(rows.size(), 8u);  // BMA: capture, count, mask, resolve, total; CPU-NATIVE: capture, readback, resolve, total
+  EXPECT_GE(rows.size(),
+            8u);  // BMA: capture, count, mask, resolve, total; CPU-NATIVE: capture, readback, resolve, total
 }
 
 }  // namespace oitbench::test

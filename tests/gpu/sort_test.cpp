@@ -11,8 +11,9 @@ class Sort : public GlTest {};
 // 32x32 pixels; llvmpipe's JIT of each shader (0.3-8 s), not the sorting, is what these tests wait for.
 constexpr Resolution kSmall{32, 32};
 
-const char* const kAlgorithms[] = {"insertion-naive", "insertion-v1", "insertion-v2", "bubble", "bubble-early",
-                                   "shell-offset", "shell-register", "merge", "bitonic", "odd-even-merge", "rbs"};
+const char* const kAlgorithms[] = {
+    "insertion-naive", "insertion-v1", "insertion-v2", "bubble",         "bubble-early", "shell-offset",
+    "shell-register",  "merge",        "bitonic",      "odd-even-merge", "rbs"};
 
 TEST_F(Sort, EveryAlgorithmSortsInItsMemoryForms) {
   for (const char* variant : kAlgorithms)
@@ -50,14 +51,14 @@ TEST_F(Sort, RbsSixteen) {
 TEST_F(Sort, KeyDistributionsAndTheComputeStage) {
   for (const char* keys : {"sorted", "reverse", "duplicates", "few-distinct"})
     for (const char* stage : {"fragment", "compute"}) {
-      auto v = run_case("sort", {{"variant", "insertion-v2"}, {"memory", "registers"}, {"n", "8"}, {"keys", keys},
-                                 {"stage", stage}},
-                        kSmall);
+      auto v = run_case(
+          "sort", {{"variant", "insertion-v2"}, {"memory", "registers"}, {"n", "8"}, {"keys", keys}, {"stage", stage}},
+          kSmall);
       EXPECT_TRUE(v.valid) << "keys=" << keys << " stage=" << stage << ": " << v.reason;
     }
-  auto v = run_case("sort", {{"variant", "bitonic"}, {"memory", "local"}, {"n", "12"}, {"keys", "duplicates"},
-                             {"stage", "compute"}},
-                    kSmall);
+  auto v = run_case(
+      "sort", {{"variant", "bitonic"}, {"memory", "local"}, {"n", "12"}, {"keys", "duplicates"}, {"stage", "compute"}},
+      kSmall);
   EXPECT_TRUE(v.valid) << "bitonic compute: " << v.reason;
 }
 
@@ -72,9 +73,10 @@ TEST_F(Sort, TableA1AssignmentsAllSort) {
 
 TEST_F(Sort, ValidatorCatchesAChangedPayloadAndAnOutOfOrderPair) {
   for (const char* stage : {"fragment", "compute"}) {
-    auto v = run_case("sort", {{"variant", "insertion-v2"}, {"memory", "registers"}, {"n", "8"}, {"stage", stage},
-                               {"fault", "wrong-result"}},
-                      kSmall);
+    auto v = run_case(
+        "sort",
+        {{"variant", "insertion-v2"}, {"memory", "registers"}, {"n", "8"}, {"stage", stage}, {"fault", "wrong-result"}},
+        kSmall);
     EXPECT_FALSE(v.valid) << stage;
     EXPECT_EQ(v.metrics.at("unsorted_pixels"), "1") << stage << ": " << v.reason;
     // Pixel (1,1) has a payload flipped; pixel (2,1) only reordered, so its multiset is intact.
@@ -96,9 +98,16 @@ TEST_F(Sort, ShellListingShapeIsValidatedNotTrusted) {
 TEST_F(Sort, ImpossibleFormsAreUnsupportedWithAReason) {
   auto dir = temp_dir("sort_unsupported");
   auto out = dir / "rows.csv";
-  auto r = run_oitbench({"run", "sort", "--set", "variant=merge,rbs,bubble", "--set", "memory=local,registers", "--set",
-                         "n=4", "--set", "stage=fragment", "--set", "keys=random", "--set", "assign=listing,loop",
-                         "--resolution", "8x8", "--reps", "1", "--out", out.string()});
+  auto r = run_oitbench({"run",          "sort",
+                         "--set",        "variant=merge,rbs,bubble",
+                         "--set",        "memory=local,registers",
+                         "--set",        "n=4",
+                         "--set",        "stage=fragment",
+                         "--set",        "keys=random",
+                         "--set",        "assign=listing,loop",
+                         "--resolution", "8x8",
+                         "--reps",       "1",
+                         "--out",        out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   int unsupported = 0, ok = 0;
   for (const auto& row : read_csv_rows(out)) {

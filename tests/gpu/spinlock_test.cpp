@@ -42,8 +42,8 @@ TEST_F(Spinlock, ValidatorCatchesAWrongEntry) {
 
 TEST_F(Spinlock, ALockNeverReleasedIsCappedNotHung) {
   // Only the first fragment of each pixel gets the lock; every later one gives up at spin_cap.
-  auto v = run_case("spinlock", {{"variant", "no-release"}, {"layers", "4"}, {"draws", "1"}, {"spin_cap", "16"}},
-                    {32, 32});
+  auto v =
+      run_case("spinlock", {{"variant", "no-release"}, {"layers", "4"}, {"draws", "1"}, {"spin_cap", "16"}}, {32, 32});
   EXPECT_FALSE(v.valid);
   EXPECT_EQ(v.metrics.at("capped_updates"), std::to_string(3 * 32 * 32));
   EXPECT_EQ(v.metrics.at("lost_updates"), std::to_string(3 * 32 * 32));

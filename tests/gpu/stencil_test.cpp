@@ -10,8 +10,9 @@ TEST_F(Stencil, BothVariantsMatchTheCpuReference) {
   for (const char* variant : {"no-stencil", "stencil"})
     for (const char* resolve : {"blend", "sort"})
       for (const char* coverage : {"1", "37", "100"}) {
-        auto v = run_case("stencil", {{"variant", variant}, {"resolve", resolve}, {"coverage", coverage},
-                                      {"nodes", "8"}, {"layers", "5"}});
+        auto v = run_case(
+            "stencil",
+            {{"variant", variant}, {"resolve", resolve}, {"coverage", coverage}, {"nodes", "8"}, {"layers", "5"}});
         EXPECT_TRUE(v.valid) << variant << " " << resolve << " coverage " << coverage << ": " << v.reason;
       }
 }

@@ -10,9 +10,9 @@
 #include <sstream>
 #include <thread>
 
-#include "experiments/experiments.hpp"
 #include "core/csv.hpp"
 #include "core/runner.hpp"
+#include "experiments/experiments.hpp"
 
 namespace oitbench::test {
 

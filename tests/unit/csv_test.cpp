@@ -1,9 +1,10 @@
+#include "core/csv.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "core/csv.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench {
@@ -42,7 +43,8 @@ TEST(Csv, AppendsWhenTheHeaderMatchesAndRefusesOtherwise) {
     CsvWriter w(path.string(), {"a", "c"});
     FAIL() << "a different header was accepted";
   } catch (const CsvError& e) {
-    EXPECT_NE(std::string(e.what()).find("column 2 is 'b' in the file but 'c' in this run"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("column 2 is 'b' in the file but 'c' in this run"), std::string::npos)
+        << e.what();
   }
   // The refused run did not touch the file.
   EXPECT_EQ(test::read_csv_rows(path).size(), 2u);

@@ -1,9 +1,10 @@
+#include "core/params.hpp"
+
 #include <gtest/gtest.h>
 
-#include "experiments/experiments.hpp"
-#include "core/params.hpp"
 #include "core/presets.hpp"
 #include "core/runner.hpp"
+#include "experiments/experiments.hpp"
 
 namespace oitbench {
 

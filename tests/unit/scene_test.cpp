@@ -1,10 +1,10 @@
 // Scene files: the shipped scenes load and generate what they promise; broken files give an error
 // naming the file, the line and column, and what was expected.
+#include "oit/scene.hpp"
+
 #include <gtest/gtest.h>
 
 #include <set>
-
-#include "oit/scene.hpp"
 
 namespace oitbench::oit {
 namespace {
@@ -45,8 +45,10 @@ TEST(Scene, SubmitOrderFollowsTheView) {
     v.order = order;
     Mesh m = build_mesh(s, v, Detail::Full);
     float first = m.vertices[m.indices.front()].position.z, last = m.vertices[m.indices.back()].position.z;
-    if (order == SubmitOrder::FrontToBack) EXPECT_GT(first, last);  // the eye is at +z
-    else EXPECT_LT(first, last);
+    if (order == SubmitOrder::FrontToBack)
+      EXPECT_GT(first, last);  // the eye is at +z
+    else
+      EXPECT_LT(first, last);
   }
 }
 
@@ -125,8 +127,10 @@ TEST(Scene, HouseDropsTheSiteAndKeepsTheGlass) {
 TEST(Scene, ModelParametersAreChecked) {
   auto error_of = [](const std::string& params) {
     try {
-      parse_scene("m.json", R"({"materials": {"x": {}}, "objects": [{"generator": "model", "file": "a.glb", "material": "x", "params": )" +
-                                params + "}], \"views\": {\"v\": {\"eye\": [0, 0, 3]}}}");
+      parse_scene(
+          "m.json",
+          R"({"materials": {"x": {}}, "objects": [{"generator": "model", "file": "a.glb", "material": "x", "params": )" +
+              params + "}], \"views\": {\"v\": {\"eye\": [0, 0, 3]}}}");
     } catch (const SceneError& e) {
       return std::string(e.what());
     }
@@ -137,7 +141,9 @@ TEST(Scene, ModelParametersAreChecked) {
   EXPECT_NE(error_of(R"({"exclude_materials": "Erde"})").find("expected an array of model material names"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"model_opacity": 1})").find("expected true or false"), std::string::npos);
-  EXPECT_EQ(error_of(R"({"grid": [3, 5, 7], "spacing": 1.5, "alpha_by_material": {"A": 0.5}, "exclude_materials": ["B"]})"), "");
+  EXPECT_EQ(
+      error_of(R"({"grid": [3, 5, 7], "spacing": 1.5, "alpha_by_material": {"A": 0.5}, "exclude_materials": ["B"]})"),
+      "");
 }
 
 TEST(Scene, UnknownSceneListsTheScenes) {

@@ -1,9 +1,10 @@
 // #include resolution and #line mapping, without a GL context.
+#include "gl/shader.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "gl/shader.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench {

@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "core/stats.hpp"
+
+#include <gtest/gtest.h>
 
 namespace oitbench {
 

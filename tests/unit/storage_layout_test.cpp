@@ -1,10 +1,10 @@
 // The CPU side of the storage layouts: Eq. 4.1 and Eq. 4.2 as printed, and every layout a
 // bijection from (pixel, node) onto its allocation (no two nodes share a slot).
+#include "oit/storage_layout.hpp"
+
 #include <gtest/gtest.h>
 
 #include <vector>
-
-#include "oit/storage_layout.hpp"
 
 namespace oitbench {
 

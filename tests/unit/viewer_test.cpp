@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "experiments/experiments.hpp"
 #include "core/params.hpp"
+#include "experiments/experiments.hpp"
 #include "support/test_support.hpp"
 #include "viewer/fly_camera.hpp"
 #include "viewer/key_script.hpp"

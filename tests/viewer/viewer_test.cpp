@@ -81,8 +81,7 @@ TEST(Viewer, DepthComplexityShowsThePeakInRed) {
 TEST(Viewer, CWalksThePackedArraysCaptureAndItsDepthComplexity) {
   // C: PPLL -> PPPA; the case is rebuilt on packed arrays and Z counts them through the storage API.
   auto png = temp_dir("viewer-pppa") / "pppa.png";
-  auto r =
-      run_oitbench(with(kSmallPlanes, {"--frames", "5", "--screenshot", png.string(), "--keys", "1:C,3:Z"}), 120);
+  auto r = run_oitbench(with(kSmallPlanes, {"--frames", "5", "--screenshot", png.string(), "--keys", "1:C,3:Z"}), 120);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.err, "capture storage PPPA")) << r.err;
   auto img = read_png(png);
