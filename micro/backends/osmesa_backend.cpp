@@ -1,11 +1,14 @@
 // OSMesa: Mesa's off-screen software context (core profile 4.5 on Mesa 22; removed in Mesa 25.1,
 // so this file is built only when CMake finds it).
+// glad's header must come before OSMesa's, which includes the system GL header.
+#include "gl/gl.hpp"
+// clang-format off
 #include <GL/osmesa.h>
+// clang-format on
 
 #include <vector>
 
 #include "backends/backend.hpp"
-#include "gl/gl.hpp"  // glad before OSMesa's header
 
 namespace oitbench {
 namespace {
