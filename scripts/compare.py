@@ -323,11 +323,29 @@ def write_csv(path, comparisons, params_of):
                         f"{c.band:.6g}", int(c.changed), c.kind, c.verdict])
 
 
-def draw_figures(out_dir, runs, comparisons, params_of, args):
+def plain_log_formatter():
+    """Matplotlib's choice of which log ticks to label, written 0.5 rather than 5x10^-1."""
+    import matplotlib.ticker
+
+    class Plain(matplotlib.ticker.LogFormatter):
+        def _num_to_string(self, x, vmin, vmax):
+            return f"{x:g}"
+    return Plain
+
+
+def key_order(key):
+    """Cases in the order of their key fields: variant, pass, resolution, parameters."""
+    return [oitcsv.sort_key(v) for v in key[1:]]
+
+
+def draw_figures(out_dir, runs, comparisons, params_of, args, order=key_order):
+    """compare-<experiment>.png and .svg (-1, -2, ... past ROWS_PER_FIGURE cases) in out_dir, cases from
+    top to bottom in `order` (a key function of a case key); returns the paths written."""
     os.environ.setdefault("MPLBACKEND", "Agg")
     import matplotlib
     matplotlib.use(os.environ["MPLBACKEND"])
     import matplotlib.pyplot as plt
+    PlainLogFormatter = plain_log_formatter()
 
     written = []
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -336,7 +354,7 @@ def draw_figures(out_dir, runs, comparisons, params_of, args):
     for c in comparisons:
         by_exp.setdefault(c.key[0], []).append(c)
     for exp, comps in by_exp.items():
-        keys = sorted({c.key for c in comps}, key=lambda k: [oitcsv.sort_key(v) for v in k[1:]])
+        keys = sorted({c.key for c in comps}, key=order)
         pages = [keys[i:i + ROWS_PER_FIGURE] for i in range(0, len(keys), ROWS_PER_FIGURE)]
         for page_no, page in enumerate(pages):
             fig, ax = plt.subplots(figsize=(9.5, 1.6 + 0.32 * len(page) * max(1, len(labels)) ** 0.5))
@@ -361,6 +379,9 @@ def draw_figures(out_dir, runs, comparisons, params_of, args):
             ax.plot([], [], color="lightgrey", linewidth=6, label="noise band")
             ax.axvline(1.0, color="black", linewidth=0.8)
             ax.set_xscale("log")
+            ax.xaxis.set_major_formatter(PlainLogFormatter())
+            ax.xaxis.set_minor_formatter(PlainLogFormatter(labelOnlyBase=False))
+            ax.tick_params(axis="x", which="minor", labelsize=7)
             ax.set_yticks(range(len(page)))
             constant = constant_fields(keys, params_of[exp])
             ax.set_yticklabels([describe_key(k, params_of[exp], constant) for k in page], fontsize=8)

@@ -70,6 +70,19 @@ def read_csv(path):
     return header, rows
 
 
+def read_header(path):
+    """The header row alone (a raw file can be large), with read_csv's errors."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            return next(csv.reader(f), [])
+    except OSError as e:
+        raise ResultsError(f"{path}: cannot read ({e.strerror})") from e
+    except csv.Error as e:
+        raise ResultsError(f"{path}: not valid CSV ({e})") from e
+    except UnicodeDecodeError as e:
+        raise ResultsError(f"{path}: not a text file (not UTF-8 at byte {e.start})") from e
+
+
 def is_summary_header(header):
     return "experiment" in header and "median_ms" in header
 
