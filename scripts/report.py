@@ -100,12 +100,14 @@ def generated_page(folder):
     return html.unescape(m.group(1)) if m else ""
 
 
-def collect(paths, out_dir, images_dir):
-    """(inputs, skipped, base, pages): the summary CSVs named or found below the folders, the CSVs
-    passed over with the reason, the inputs' common folder, and the folders below it that hold a page
-    this script wrote ((folder, what), never searched for CSVs: a comparison page keeps its ratios as
-    CSV). Raises ResultsError for a missing or unreadable input or when nothing is left."""
-    found, skipped, pages = [], [], []
+def collect(paths, out_dir, images_dir, pages=None):
+    """(inputs, skipped, base): the summary CSVs named or found below the folders, the CSVs passed over
+    with the reason, and the inputs' common folder. Folders below them that hold a page this script
+    wrote are not searched (a comparison page keeps its ratios as CSV); they go to `pages`, when given,
+    as (folder, generated_page(folder)). Raises ResultsError for a missing or unreadable input or when
+    nothing is left."""
+    found, skipped = [], []
+    pages = [] if pages is None else pages
     keep_out = {os.path.realpath(p) for p in (out_dir, images_dir) if p}
     dirs = []
     for p in paths:
@@ -156,7 +158,7 @@ def collect(paths, out_dir, images_dir):
     if not inputs:
         where = ", ".join(paths)
         raise oitcsv.ResultsError(f"{where}: no oitbench summary CSV found (written by `oitbench run --out`)")
-    return inputs, skipped, base, pages
+    return inputs, skipped, base
 
 
 def default_images_dir(paths):
@@ -815,7 +817,8 @@ class Paired:
                 self.pass_rank.get((key[0], key[2]), 0))
 
     def differing(self, exp):
-        """'name: A 32; B 0' for the key fields whose values differ between the sides, in `exp`."""
+        """[(field, [A's values, B's values])] for the key fields of `exp` whose values differ between the
+        sides (a parameter scoped away from a row counts as empty), each side's values as text."""
         fields = [("variant", lambda r: r.get("variant", "")),
                   ("resolution", lambda r: f"{r.get('width', '')}x{r.get('height', '')}")]
         fields += [(p, lambda r, p=p: r.get(p, "") if oitcsv.applies(p, r) else "") for p in self.params_of[exp]]
@@ -885,20 +888,16 @@ def sides_section(page, sides):
     add("folder", [f"{s.name}/" + ("presets/" if s.folder != s.path else "") for s in sides])
     for col in columns:
         add(labels.get(col, col), ["; ".join(s.values(col)) or "(not recorded)" for s in sides], described.get(col, ""))
+    ranges, cases = [], []
     for s in sides:
-        stamps = sorted(v for v in s.values("timestamp_utc"))
-        s.time_range = f"{stamps[0]} \u2013 {stamps[-1]}" if stamps else "(not recorded)"
-    add("timestamps (UTC)", [s.time_range for s in sides])
+        stamps = sorted(s.values("timestamp_utc"))
+        ranges.append(f"{stamps[0]} \u2013 {stamps[-1]}" if stamps else "(not recorded)")
+        facts = [Facts(run) for run in s.presets.values()]
+        status = sum((f.status for f in facts), collections.Counter())
+        cases.append(Html(f"{sum(f.cases for f in facts)} " + status_badges(status, always=False)))
+    add("timestamps (UTC)", ranges)
     add("presets", [f"{len(s.presets)}: " + ", ".join(sorted(s.presets)) for s in sides])
-    for s in sides:
-        status = collections.Counter()
-        cases = 0
-        for run in s.presets.values():
-            f = Facts(run)
-            status.update(f.status)
-            cases += f.cases
-        s.cases = (cases, status)
-    add("cases", [Html(f"{s.cases[0]} " + status_badges(s.cases[1], always=False)) for s in sides])
+    add("cases", cases)
     page.section(2, "runs", "The two runs")
     page.add(html_table(["", f"A: {a.label}", f"B: {b.label}"], rows, classes=classes))
     page.add("<p class='muted small'>Highlighted rows differ between the two sides. Hover a name for its "
@@ -1091,7 +1090,8 @@ def build(args):
     images_dir = args.images if args.images else default_images_dir(args.inputs)
     if args.images and not os.path.isdir(args.images):
         raise oitcsv.ResultsError(f"{args.images}: no such images folder (--images)")
-    inputs, skipped, base, pages = collect(args.inputs, args.out_dir, images_dir)
+    pages = []
+    inputs, skipped, base = collect(args.inputs, args.out_dir, images_dir, pages)
     for p in [base] + ([images_dir] if images_dir else []):
         out, inside = os.path.realpath(args.out_dir), os.path.realpath(p)
         if out == inside or inside.startswith(out + os.sep):
