@@ -19,7 +19,7 @@ import unittest
 import zlib
 
 import synthetic as syn
-from support import PNG_MAGIC, TempDirTest, oitbench_exe, run_oitbench, run_script
+from support import PNG_MAGIC, PYTHON, TempDirTest, oitbench_exe, run_oitbench, run_script
 from test_tables import MINI_PAPER
 
 CHROMIUM = "/usr/bin/chromium"
@@ -364,6 +364,20 @@ class ComparePageSynthetic(ReportCase):
         self.assertEqual(proc.returncode, 2, proc.stderr)
         self.assertIn("not both", proc.stderr)
         self.assertFalse(os.path.exists(self.path("cmp/index.html")))  # nothing written on bad input
+
+    def test_a_figure_that_fails_exits_1_and_the_page_says_so(self):
+        sort = (syn.sort_rows(), [], ["n", "keys"])
+        a = write_side(self.path("a"), {"sort": sort})
+        b = write_side(self.path("b"), {"sort": sort}, rng_seed=3)
+        code = ("import sys; sys.path.insert(0, sys.argv[1]); import compare, report\n"
+                "def fail(*args, **kwargs): raise ValueError('no figure today')\n"
+                "compare.draw_figures = fail\n"
+                "sys.exit(report.main(sys.argv[2:]))")
+        proc = subprocess.run([PYTHON, "-c", code, syn.SCRIPTS, "--compare", a, b, "-o", self.path("cmp")],
+                              capture_output=True, text=True, timeout=300, env=dict(os.environ, MPLBACKEND="Agg"))
+        self.assertEqual(proc.returncode, 1, proc.stderr)
+        self.assertIn("figure not drawn: sort: sort: ValueError: no figure today", proc.stderr)
+        self.assertIn("could not be drawn: ValueError: no figure today", read(self.path("cmp/index.html")))
 
     def test_a_results_root_links_its_comparison_pages(self):
         sort = (syn.sort_rows(), [], ["n", "keys"])
