@@ -8,11 +8,20 @@ timestamp columns describe the run and stay out of the key. For every case and e
 prints ratio = median(run) / median(first): above 1 is slower. The 95% confidence interval comes from
 a bootstrap over the repetitions when the --raw files are given, else from each median's MAD.
 
-A change is flagged only when the interval excludes 1 AND the ratio lies outside the case's noise
-band: max(--min-effect, exp(k * sqrt(cv_a^2 + cv_b^2))), cv = 1.4826 * MAD / median, the spread of
-single repetitions. On a shared 2-core VM identical code moves 20-30% between runs (up to 2x for
-sub-millisecond cases), which a within-run interval alone does not capture; the band keeps those from
-being called changes. Exit code 0 whatever the verdict; 2 for unreadable input.
+Each comparison gets one of four verdicts:
+  no measurable difference   the interval includes 1;
+  inside the noise band      the interval excludes 1, but the ratio lies inside the case's between-run
+                             noise band, max(--min-effect, exp(k * sqrt(cv_a^2 + cv_b^2))), cv = 1.4826 *
+                             MAD / median, the spread of single repetitions: a real difference between
+                             these two runs, but one that identical code also shows between runs, so one
+                             run of each cannot attribute it to the driver or the code;
+  overlapping repetitions    beyond the band, but the two runs' repetitions overlap (a stalled repetition
+                             among a handful), so not attributable either;
+  SLOWER / FASTER            changed: the interval excludes 1, the ratio is beyond the band and the
+                             repetitions are apart.
+On a shared 2-core VM identical code moves 20-30% between runs (up to 2x for sub-millisecond cases),
+which a within-run interval alone does not capture: hence the band. The last line counts the verdicts.
+Exit code 0 whatever the verdict; 2 for unreadable input.
 """
 import argparse
 import csv
@@ -30,6 +39,14 @@ Z95 = 1.959964
 MEDIAN_SE_FACTOR = math.sqrt(math.pi / 2)
 ROWS_PER_FIGURE = 40
 SMALL_N = 10  # fewer repetitions than this: their full range is the noise
+MIN_EFFECT = 1.5  # --min-effect's default: identical code moves 20-30% between runs on the 2-core VM
+NOISE_K = 2.0
+BOOTSTRAP = 1000
+SEED = 1
+
+# Verdict classes of a comparison (Comparison.kind), in the order the summary line counts them.
+NO_DIFFERENCE, IN_BAND, OVERLAP, CHANGED = "none", "band", "overlap", "changed"
+KINDS = (NO_DIFFERENCE, IN_BAND, OVERLAP, CHANGED)
 
 
 class Case:
@@ -77,8 +94,11 @@ def param_columns(runs, experiment):
 
 
 def case_key(row, params):
+    """What joins the runs. A parameter the schema scopes away from this row (applies_where: `block` only
+    for the RBS techniques, ...) is left out, so schema 1 files, which filled every parameter, join schema
+    2 files, which leave those empty."""
     return (row["experiment"], row["variant"], row["pass"], row.get("width", ""), row.get("height", "")) + \
-        tuple(row.get(p, "") for p in params)
+        tuple(row.get(p, "") if oitcsv.applies(p, row) else "" for p in params)
 
 
 def load_raw_samples(path, timers):
@@ -138,20 +158,25 @@ class Comparison:
         (alo, ahi), (blo, bhi) = base.typical_range(), other.typical_range()
         separate = blo > ahi if self.ratio > 1 else bhi < alo
         self.changed = excludes_one and beyond_band and separate
-        if self.changed:
-            self.verdict = "SLOWER" if self.ratio > 1 else "FASTER"
+        band = f"{self.band:.2f}x"
+        if not excludes_one:
+            self.kind, self.verdict = NO_DIFFERENCE, "no measurable difference (the 95% CI includes 1)"
         elif not beyond_band:
-            self.verdict = "within noise"
-        elif not excludes_one:
-            self.verdict = "within noise (CI includes 1)"
+            self.kind = IN_BAND
+            self.verdict = (f"resolved, but inside the between-run noise band ({band}): not attributable to "
+                            "the driver or code from one run of each")
+        elif not separate:
+            self.kind = OVERLAP
+            self.verdict = (f"beyond the noise band ({band}), but the repetitions overlap: not attributable "
+                            "from one run of each")
         else:
-            self.verdict = "within noise (repetitions overlap)"
+            self.kind, self.verdict = CHANGED, "SLOWER" if self.ratio > 1 else "FASTER"
 
 
 def describe_key(key, params, constant=()):
     """'dynamic size=33 pass=resolve 800x600', leaving out what every case of the experiment shares."""
     exp, variant, pas, w, h = key[:5]
-    parts = [variant] if "variant" not in constant else []
+    parts = [variant] if variant and "variant" not in constant else []
     for p, v in zip(params, key[5:]):
         if v == "" or p in constant or p == "seed" or (p == "fault" and v == "none"):
             continue
@@ -173,7 +198,7 @@ def constant_fields(keys, params):
 def shared_text(key, params, constant):
     parts = [f"{p}={v}" for p, v in zip(params, key[5:]) if p in constant and v != "" and p != "seed"
              and not (p == "fault" and v == "none")]
-    if "variant" in constant:
+    if "variant" in constant and key[1]:
         parts.insert(0, key[1])
     if "resolution" in constant:
         parts.append(f"{key[3]}x{key[4]}")
@@ -252,7 +277,7 @@ def print_report(runs, comparisons, missing, params_of, notes, args):
         desc = describe_key(c.key, params_of[exp], constant)
         ci = f"[{c.ci[0]:.2f}, {c.ci[1]:.2f}]" + ("*" if c.ci_method == "bootstrap" else " ")
         print(f"{desc:<52} {c.label:<14} {fmt_ms(c.base.median):>9} {fmt_ms(c.other.median):>9} "
-              f"{c.ratio:>6.2f}x {ci:>17} {'x' + format(c.band, '.2f'):>7}  {c.verdict}")
+              f"{c.ratio:>6.2f}x {ci:>17} {format(c.band, '.2f') + 'x':>7}  {c.verdict}")
     if any(c.ci_method == "bootstrap" for c in comparisons):
         print("\n* bootstrap over raw repetitions; otherwise from each median's MAD")
     for key, absent in missing:
@@ -265,31 +290,62 @@ def print_report(runs, comparisons, missing, params_of, notes, args):
             params = params_of.get(r["experiment"], [])
             print(f"not compared ({run.label}): {r['experiment']} {oitcsv.describe_case(r, params)}: "
                   f"{oitcsv.status_of(r)} {r.get('reason', '')}".rstrip())
-    changed = [c for c in comparisons if c.changed]
-    slower = sum(1 for c in changed if c.ratio > 1)
-    within = len(comparisons) - len(changed)
     vs = f" against {runs[0].label}" + (f" ({len(runs) - 1} runs compared with it)" if len(runs) > 2 else "")
     extra = f"; {len(missing)} not in every run" if missing else ""
-    print(f"\n{within} cases within noise, {len(changed)} changed ({slower} slower, {len(changed) - slower} faster)"
-          f"{vs}{extra}")
+    print(f"\n{summary_text(comparisons, args.min_effect)}{vs}{extra}")
+
+
+def tally(comparisons):
+    """{kind: count} over KINDS, and the changed ones split into slower and faster."""
+    counts = {k: sum(1 for c in comparisons if c.kind == k) for k in KINDS}
+    counts["slower"] = sum(1 for c in comparisons if c.kind == CHANGED and c.ratio > 1)
+    counts["faster"] = counts[CHANGED] - counts["slower"]
+    return counts
+
+
+def summary_text(comparisons, min_effect):
+    """'3 no measurable difference, 5 inside the between-run noise band (at least 1.5x), 0 beyond it with
+    overlapping repetitions, 4 changed (0 slower, 4 faster)': every comparison in exactly one count."""
+    n = tally(comparisons)
+    return (f"{n[NO_DIFFERENCE]} no measurable difference, {n[IN_BAND]} inside the between-run noise band "
+            f"(at least {min_effect:g}x), {n[OVERLAP]} beyond it with overlapping repetitions, "
+            f"{n[CHANGED]} changed ({n['slower']} slower, {n['faster']} faster)")
 
 
 def write_csv(path, comparisons, params_of):
     with open(path, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
         w.writerow(["experiment", "case", "run", "base_median_ms", "median_ms", "ratio", "ci_low", "ci_high",
-                    "ci_method", "noise_band", "changed", "verdict"])
+                    "ci_method", "noise_band", "changed", "class", "verdict"])
         for c in comparisons:
             w.writerow([c.key[0], describe_key(c.key, params_of[c.key[0]]), c.label, c.base.median,
                         c.other.median, f"{c.ratio:.6g}", f"{c.ci[0]:.6g}", f"{c.ci[1]:.6g}", c.ci_method,
-                        f"{c.band:.6g}", int(c.changed), c.verdict])
+                        f"{c.band:.6g}", int(c.changed), c.kind, c.verdict])
 
 
-def draw_figures(out_dir, runs, comparisons, params_of, args):
+def plain_log_formatter():
+    """Matplotlib's choice of which log ticks to label, written 0.5 rather than 5x10^-1."""
+    import matplotlib.ticker
+
+    class Plain(matplotlib.ticker.LogFormatter):
+        def _num_to_string(self, x, vmin, vmax):
+            return f"{x:g}"
+    return Plain
+
+
+def key_order(key):
+    """Cases in the order of their key fields: variant, pass, resolution, parameters."""
+    return [oitcsv.sort_key(v) for v in key[1:]]
+
+
+def draw_figures(out_dir, runs, comparisons, params_of, args, order=key_order):
+    """compare-<experiment>.png and .svg (-1, -2, ... past ROWS_PER_FIGURE cases) in out_dir, cases from
+    top to bottom in `order` (a key function of a case key); returns the paths written."""
     os.environ.setdefault("MPLBACKEND", "Agg")
     import matplotlib
     matplotlib.use(os.environ["MPLBACKEND"])
     import matplotlib.pyplot as plt
+    PlainLogFormatter = plain_log_formatter()
 
     written = []
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -298,7 +354,7 @@ def draw_figures(out_dir, runs, comparisons, params_of, args):
     for c in comparisons:
         by_exp.setdefault(c.key[0], []).append(c)
     for exp, comps in by_exp.items():
-        keys = sorted({c.key for c in comps}, key=lambda k: [oitcsv.sort_key(v) for v in k[1:]])
+        keys = sorted({c.key for c in comps}, key=order)
         pages = [keys[i:i + ROWS_PER_FIGURE] for i in range(0, len(keys), ROWS_PER_FIGURE)]
         for page_no, page in enumerate(pages):
             fig, ax = plt.subplots(figsize=(9.5, 1.6 + 0.32 * len(page) * max(1, len(labels)) ** 0.5))
@@ -323,6 +379,9 @@ def draw_figures(out_dir, runs, comparisons, params_of, args):
             ax.plot([], [], color="lightgrey", linewidth=6, label="noise band")
             ax.axvline(1.0, color="black", linewidth=0.8)
             ax.set_xscale("log")
+            ax.xaxis.set_major_formatter(PlainLogFormatter())
+            ax.xaxis.set_minor_formatter(PlainLogFormatter(labelOnlyBase=False))
+            ax.tick_params(axis="x", which="minor", labelsize=7)
             ax.set_yticks(range(len(page)))
             constant = constant_fields(keys, params_of[exp])
             ax.set_yticklabels([describe_key(k, params_of[exp], constant) for k in page], fontsize=8)
@@ -336,12 +395,27 @@ def draw_figures(out_dir, runs, comparisons, params_of, args):
                          f"\n{runs[0].renderer()}" + (" (and others)" if len({r.renderer() for r in runs}) > 1
                                                        else ""), fontsize=10)
             suffix = f"-{page_no + 1}" if len(pages) > 1 else ""
-            for fmt in ("png", "svg"):
-                path = os.path.join(out_dir, f"compare-{exp}{suffix}.{fmt}")
-                fig.savefig(path, dpi=120, bbox_inches="tight")
-                written.append(path)
+            # The files depend only on the data: fixed SVG ids and no date, so a rerun changes nothing.
+            with plt.rc_context({"svg.hashsalt": "oitbench"}):
+                for fmt in ("png", "svg"):
+                    path = os.path.join(out_dir, f"compare-{exp}{suffix}.{fmt}")
+                    fig.savefig(path, dpi=120, bbox_inches="tight",
+                                metadata={"Date": None} if fmt == "svg" else None)
+                    written.append(path)
             plt.close(fig)
     return written
+
+
+def add_statistics_options(ap):
+    """The options that decide ratios, intervals and verdicts (report.py --compare takes them too)."""
+    ap.add_argument("--min-effect", type=float, default=MIN_EFFECT,
+                    help=f"smallest ratio (or 1/ratio) that counts as a change: the between-run noise band "
+                         f"(default {MIN_EFFECT:g})")
+    ap.add_argument("--noise-k", type=float, default=NOISE_K,
+                    help=f"noise band width in robust standard deviations of log time (default {NOISE_K:g})")
+    ap.add_argument("--bootstrap", type=int, default=BOOTSTRAP,
+                    help=f"bootstrap resamples (default {BOOTSTRAP})")
+    ap.add_argument("--seed", type=int, default=SEED, help=f"bootstrap seed (default {SEED})")
 
 
 def main(argv=None):
@@ -350,12 +424,7 @@ def main(argv=None):
     ap.add_argument("--raw", nargs="+", default=[], help="the runs' --raw files, in the same order")
     ap.add_argument("-o", "--out-dir", help="write compare-<experiment>.png/.svg and compare.csv here")
     ap.add_argument("--labels", help="comma-separated run labels (default: file names)")
-    ap.add_argument("--min-effect", type=float, default=1.5,
-                    help="smallest ratio (or 1/ratio) that counts as a change (default 1.5)")
-    ap.add_argument("--noise-k", type=float, default=2.0,
-                    help="noise band width in robust standard deviations of log time (default 2)")
-    ap.add_argument("--bootstrap", type=int, default=1000, help="bootstrap resamples (default 1000)")
-    ap.add_argument("--seed", type=int, default=1, help="bootstrap seed (default 1)")
+    add_statistics_options(ap)
     args = ap.parse_args(argv)
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     if len(args.csv) < 2:

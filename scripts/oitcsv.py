@@ -44,6 +44,10 @@ METRIC_PATTERN = re.compile(r"(error|rmse|psnr|mismatch|predicted|_used$|pixels$
 
 # Where a run's identity lives: different drivers, machines and commits, never part of a case's key.
 RUN_COLUMNS = [c["name"] for c in SCHEMA["summary_columns"] if c.get("group") == "run"]
+# Parameters scoped to some of an experiment's cases: {parameter: {experiment: "column in {A, B, ...}"}}.
+APPLIES_WHERE = {c["name"]: c["applies_where"] for c in SCHEMA["summary_columns"]
+                 if c["role"] == "parameter" and c.get("applies_where")}
+_CONDITION = re.compile(r"^\s*(\w+)\s+in\s+\{([^}]*)\}\s*$")
 
 
 class ResultsError(Exception):
@@ -64,6 +68,19 @@ def read_csv(path):
     except UnicodeDecodeError as e:
         raise ResultsError(f"{path}: not a text file (not UTF-8 at byte {e.start})") from e
     return header, rows
+
+
+def read_header(path):
+    """The header row alone (a raw file can be large), with read_csv's errors."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            return next(csv.reader(f), [])
+    except OSError as e:
+        raise ResultsError(f"{path}: cannot read ({e.strerror})") from e
+    except csv.Error as e:
+        raise ResultsError(f"{path}: not valid CSV ({e})") from e
+    except UnicodeDecodeError as e:
+        raise ResultsError(f"{path}: not a text file (not UTF-8 at byte {e.start})") from e
 
 
 def is_summary_header(header):
@@ -165,6 +182,17 @@ class Run:
             if r.get("gl_renderer"):
                 return f"{r['gl_renderer']} via {r.get('backend', '?')}"
         return "unknown renderer"
+
+
+def applies(param, row):
+    """False when the schema scopes `param` away from this row's case (applies_where: `block` applies to
+    oit only where technique is an RBS one); True otherwise, and for a condition this reader cannot parse.
+    Schema 2 rows leave such parameters empty; schema 1 rows filled them with values nothing used."""
+    condition = APPLIES_WHERE.get(param, {}).get(row.get("experiment", ""))
+    m = _CONDITION.match(condition) if condition else None
+    if not m:
+        return True
+    return row.get(m.group(1), "") in {v.strip() for v in m.group(2).split(",")}
 
 
 def is_metric_name(column):

@@ -1,17 +1,29 @@
 #!/usr/bin/python3
 """One static HTML page from oitbench runs: what ran where, what failed and why, every figure, the
-papers' tables beside ours, and the rendered images.
+papers' tables beside ours, and the rendered images; or, with --compare, one page of per-case ratios
+between two results folders (two drivers, machines or commits).
 
     scripts/report.py RUN.csv [RUN2.csv ...] -o DIR
     scripts/report.py RESULTS_DIR -o DIR [--paper PAPER_DIR] [--images IMAGES_DIR]
+    scripts/report.py --compare A_DIR B_DIR -o DIR [--labels A,B] [--min-effect 1.5]
 
 A folder argument stands for every summary CSV below it, found by its header (oitcsv.is_summary_header);
 --raw files are left out (a NAME_raw.csv beside NAME.csv makes NAME's parameter columns exact), and so are
-the output folder and the images folder. DIR gets index.html, figures/ (plot.py's figures, PNG and SVG)
-and images/ (copies of the rendered PNGs); every link is relative, so DIR can be moved or committed.
+the output folder, the images folder and any folder holding a page this script wrote. DIR gets
+index.html, figures/ (plot.py's figures, PNG and SVG) and images/ (copies of the rendered PNGs); every
+link is relative, so DIR can be moved or committed. A results root that holds several driver folders
+(RESULTS/DRIVER/presets/) links to the comparison pages below it, or says how to write one.
+
+--compare pairs A/presets/NAME.csv with B/presets/NAME.csv (NAME.csv in the folder itself when it has no
+presets/; NAME_raw.csv beside each when there is one) and runs compare.py's statistics on each pair:
+the ratio B/A per case with its 95% interval (bootstrap over the repetitions with raw files on both
+sides, else from the MADs) and its verdict, grouped per preset and experiment, with compare.py's
+figures. The header names each side's driver, GL strings, backend, LP_NUM_THREADS, environment, commit,
+machine and timestamps; cases on one side only, or not ok on one side, are listed with status and reason.
+
 The page depends only on its inputs: the same results give the same files, byte for byte.
 Exit codes: 0 written; 1 written, but a figure could not be drawn (the page says which); 2 no or
-unreadable input, or an output folder that holds something else.
+unreadable input (the message names the file or folder), or an output folder that holds something else.
 """
 import argparse
 import collections
@@ -25,12 +37,14 @@ import sys
 import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import compare  # noqa: E402
 import oitcsv  # noqa: E402
 import plot  # noqa: E402
 import tables  # noqa: E402
 
 GENERATOR = "oitbench scripts/report.py"
-STATUSES = ["ok", "invalid", "unsupported", "error", "timeout"]
+STATUSES = oitcsv.STATUSES
+COMPARE_META = "oitbench-compare"  # <meta name=COMPARE_META content="B against A"> marks a comparison page
 # Metadata shown per run, in this order: (column, label).
 META_COLUMNS = [("gl_renderer", "GL_RENDERER"), ("gl_vendor", "GL_VENDOR"), ("gl_version", "GL_VERSION"),
                 ("backend", "backend"), ("device", "device"), ("lp_num_threads", "LP_NUM_THREADS"),
@@ -72,18 +86,45 @@ def md_inline(text):
 
 # ---------------------------------------------------------------------------------------------- inputs
 
-def collect(paths, out_dir, images_dir):
-    """(inputs, skipped): the summary CSVs named or found below the folders, and the CSVs passed over
-    with the reason. Raises ResultsError for a missing or unreadable input or when nothing is left."""
+def generated_page(folder):
+    """None, or what a page this script wrote in `folder` is: its COMPARE_META text ("B against A") for
+    a comparison page, "" for a report."""
+    index = os.path.join(folder, "index.html")
+    if not os.path.isfile(index):
+        return None
+    with open(index, encoding="utf-8", errors="replace") as f:
+        head = f.read(4000)
+    if f'<meta name="generator" content="{GENERATOR}">' not in head:
+        return None
+    m = re.search(f'<meta name="{COMPARE_META}" content="([^"]*)">', head)
+    return html.unescape(m.group(1)) if m else ""
+
+
+def collect(paths, out_dir, images_dir, pages=None):
+    """(inputs, skipped, base): the summary CSVs named or found below the folders, the CSVs passed over
+    with the reason, and the inputs' common folder. Folders below them that hold a page this script
+    wrote are not searched (a comparison page keeps its ratios as CSV); they go to `pages`, when given,
+    as (folder, generated_page(folder)). Raises ResultsError for a missing or unreadable input or when
+    nothing is left."""
     found, skipped = [], []
+    pages = [] if pages is None else pages
     keep_out = {os.path.realpath(p) for p in (out_dir, images_dir) if p}
     dirs = []
     for p in paths:
         if os.path.isdir(p):
             dirs.append(p)
             for root, subdirs, files in os.walk(p):
-                subdirs[:] = sorted(d for d in subdirs if not d.startswith(".")
-                                    and os.path.realpath(os.path.join(root, d)) not in keep_out)
+                keep = []
+                for d in sorted(subdirs):
+                    full = os.path.join(root, d)
+                    if d.startswith(".") or os.path.realpath(full) in keep_out:
+                        continue
+                    what = generated_page(full)
+                    if what is None:
+                        keep.append(d)
+                    else:
+                        pages.append((full, what))
+                subdirs[:] = keep
                 found += [(os.path.join(root, f), False) for f in sorted(files) if f.endswith(".csv")]
         elif os.path.exists(p):
             found.append((p, True))
@@ -131,14 +172,11 @@ def default_images_dir(paths):
 
 
 def prepare_out_dir(out_dir):
-    """An empty or new folder, or a previous report (whose generated parts are removed first)."""
+    """An empty or new folder, or a previous report or comparison page (whose generated parts are removed
+    first)."""
     index = os.path.join(out_dir, "index.html")
     if os.path.isdir(out_dir) and os.listdir(out_dir):
-        previous = False
-        if os.path.isfile(index):
-            with open(index, encoding="utf-8", errors="replace") as f:
-                previous = f'<meta name="generator" content="{GENERATOR}">' in f.read(4000)
-        if not previous:
+        if generated_page(out_dir) is None:
             raise oitcsv.ResultsError(f"{out_dir}: not empty and not a previous report; give a new or empty "
                                       "folder with -o")
         for sub in ("figures", "images"):
@@ -262,8 +300,9 @@ def img_tag(src_rel, abs_path, alt, kind):
 
 
 class Page:
-    def __init__(self, title):
+    def __init__(self, title, meta=None):
         self.title = title
+        self.meta = meta or {}  # more <meta name content> tags
         self.toc = []  # (level, anchor, text)
         self.body = []
         self.anchors = {"broken-images"}
@@ -293,6 +332,7 @@ class Page:
         return "\n".join([
             "<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
             f'<meta name="generator" content="{GENERATOR}">',
+            *(f'<meta name="{esc(k)}" content="{esc(v)}">' for k, v in sorted(self.meta.items())),
             '<meta name="viewport" content="width=device-width, initial-scale=1">',
             f"<title>{esc(self.title)}</title>", f"<style>{CSS}</style>", "</head>",
             '<body data-loaded="0">', '<div id="broken-images" class="alert" hidden></div>',
@@ -391,6 +431,12 @@ details.table-run { margin: 6px 0 14px; }
 details.table-run > summary { cursor: pointer; font-weight: 600; }
 details.table-run details > summary { cursor: pointer; color: var(--muted); font-size: 13px; }
 dl.howto dt { font-weight: 600; margin-top: 8px; }
+table.data tr.differs td { background: #fff8c5; }
+.case, .verdict.changed { white-space: nowrap; }
+.verdict.none, .verdict.band, .verdict.overlap { color: var(--muted); }
+.verdict.changed { font-weight: 600; padding: 0 6px; border-radius: 10px; }
+.verdict.slower { background: #ffebe9; color: #a40e26; }
+.verdict.faster { background: #dafbe1; color: #116329; }
 dl.howto dd { margin-left: 16px; }
 """
 
@@ -630,6 +676,403 @@ def render_caption(csv_path):
     return " ".join(parts) + " " + esc(", ".join(facts)) if facts else " ".join(parts)
 
 
+def across_section(page, paths, pages, out_dir):
+    """A results root holding several driver folders (RESULTS/DRIVER/presets/): links to the comparison
+    pages found below it, or the command that writes one."""
+    drivers = []
+    for p in paths:
+        if os.path.isdir(p):
+            drivers += [os.path.join(p, d) for d in sorted(os.listdir(p))
+                        if os.path.isdir(os.path.join(p, d, "presets")) and generated_page(os.path.join(p, d)) is None]
+    comparisons = [(folder, what) for folder, what in pages if what]
+    if len(drivers) < 2 and not comparisons:
+        return
+    page.section(2, "across-drivers", "Across drivers")
+    if len(drivers) >= 2:
+        page.add(f"<p>{len(drivers)} driver folders: " +
+                 ", ".join(f"<code>{esc(os.path.basename(d))}/</code>" for d in drivers) + ".</p>")
+    if comparisons:
+        page.add("<ul>" + "".join(
+            f'<li><a href="{url(os.path.relpath(os.path.join(folder, "index.html"), out_dir))}">{esc(what)}</a>'
+            f" (<code>{esc(os.path.basename(folder))}/</code>): per-case ratios with intervals</li>"
+            for folder, what in comparisons) + "</ul>")
+    else:
+        a = drivers[0]
+        cmds = [f"/usr/bin/python3 scripts/report.py --compare {shown_path(a)} {shown_path(b)} -o "
+                f"{shown_path(os.path.join(os.path.dirname(a), 'compare-' + os.path.basename(a) + '-' + os.path.basename(b)))}"
+                for b in drivers[1:]]
+        page.add("<p class='muted'>No comparison page here yet. Per-case ratios with intervals, one page per pair: "
+                 + "".join(f"<br><code>{esc(c)}</code>" for c in cmds) + "</p>")
+
+
+# --------------------------------------------------------------------------------- cross-run comparison
+# scripts/report.py --compare A B -o DIR: the presets both folders ran, case by case, through compare.py.
+
+# How each verdict class reads in the tables; compare.py's full sentence is the cell's tooltip.
+KIND_LABELS = {compare.NO_DIFFERENCE: "no measurable difference", compare.IN_BAND: "inside the noise band",
+               compare.OVERLAP: "repetitions overlap", compare.CHANGED: "changed"}
+# Run columns the header does not show as a row of their own.
+SHOWN_ELSEWHERE = {"preset": "each preset is a section", "timestamp_utc": "shown as a range"}
+
+
+class Side:
+    """One results folder: its presets, RESULTS/presets/NAME.csv (or NAME.csv in the folder itself) with
+    NAME_raw.csv when there is one. Raises ResultsError naming the folder or file that is not right."""
+
+    def __init__(self, path):
+        self.path = path
+        if not os.path.exists(path):
+            raise oitcsv.ResultsError(f"{path}: no such folder")
+        if not os.path.isdir(path):
+            raise oitcsv.ResultsError(f"{path}: not a folder; --compare takes two results folders, each with "
+                                      "presets/NAME.csv (and NAME_raw.csv), as scripts/reference_runs.sh writes them")
+        sub = os.path.join(path, "presets")
+        self.folder = sub if os.path.isdir(sub) else path
+        summaries, raws = {}, {}
+        for f in sorted(os.listdir(self.folder)):
+            p = os.path.join(self.folder, f)
+            if not f.endswith(".csv") or not os.path.isfile(p):
+                continue
+            header = oitcsv.read_header(p)
+            if oitcsv.is_summary_header(header):
+                summaries[f[:-len(".csv")]] = p
+            elif oitcsv.is_raw_header(header):
+                raws[f[:-len(".csv")]] = p
+            else:
+                raise oitcsv.ResultsError(f"{p}: not an oitbench summary or --raw CSV (no experiment and "
+                                          "median_ms columns, nor rep and cpu_ms)")
+        if not summaries:
+            raise oitcsv.ResultsError(f"{self.folder}: no oitbench summary CSV here (presets/NAME.csv, "
+                                      "written by `oitbench run --out`)")
+        self.presets, self.raw = {}, {}  # NAME: oitcsv.Run; NAME: its raw file or None
+        for name, p in summaries.items():
+            raw = raws.get(name + "_raw")
+            header, rows = oitcsv.read_csv(p)
+            raw_params = oitcsv.raw_param_columns(oitcsv.read_header(raw)) if raw else None
+            self.presets[name] = oitcsv.Run(p, header, rows, raw_params)
+            self.raw[name] = raw
+        self.orphans = [os.path.basename(p) for n, p in raws.items()
+                        if not (n.endswith("_raw") and n[:-len("_raw")] in summaries)]
+        self.rows = [r for name in sorted(self.presets) for r in self.presets[name].rows]
+        self.name = self.label = None  # set by name_sides()
+
+    def values(self, column):
+        return distinct(r.get(column, "") for r in self.rows)
+
+
+def name_sides(sides, labels):
+    """Each side's folder name (its own name, or its path from the two folders' common parent when the
+    names are the same) and label: --labels, else each side's driver where it ran one (schema 1 files
+    do not record it) or its folder name; the folder names when those are the same; else A and B."""
+    folders = [os.path.abspath(s.path) for s in sides]
+    names = [os.path.basename(f) for f in folders]
+    if names[0] == names[1]:
+        common = os.path.commonpath(folders)
+        names = [os.path.relpath(f, common) if f != common else os.path.basename(f) for f in folders]
+    for s, name in zip(sides, names):
+        s.name = name
+    if not labels:
+        drivers = [s.values("driver") for s in sides]
+        labels = [d[0] if len(d) == 1 else s.name for d, s in zip(drivers, sides)]
+        if labels[0] == labels[1]:
+            labels = names if names[0] != names[1] else ["A", "B"]
+    names = labels
+    for s, name in zip(sides, names):
+        s.label = name
+        for run in s.presets.values():
+            run.label = name
+
+
+class Paired:
+    """One preset both sides ran: compare.py's comparisons, and the cases it could not compare."""
+
+    def __init__(self, name, sides, stats):
+        self.name = name
+        self.runs = [s.presets[name] for s in sides]
+        self.comparisons, _, self.params_of, self.notes = compare.compare(self.runs, [s.raw[name] for s in sides],
+                                                                          stats)
+        self.counts = compare.tally(self.comparisons)
+        self.pass_rank = {}
+        for run in self.runs:
+            for r in run.rows:
+                self.pass_rank.setdefault((r["experiment"], r["pass"]), len(self.pass_rank))
+        self.experiments = distinct(e for run in self.runs for e in run.experiments())
+        # Cases some pass of which was not compared: on one side only, or not ok on one side (or both).
+        compared = {c.key for c in self.comparisons}
+        self.by_side = [collections.OrderedDict() for _ in self.runs]  # {case (key less pass): [rows]}
+        self.missing = collections.OrderedDict()  # {case: [passes not compared]}
+        for cases, run in zip(self.by_side, self.runs):
+            for r in run.rows:
+                key = compare.case_key(r, self.params_of[r["experiment"]])
+                case = key[:2] + key[3:]
+                cases.setdefault(case, []).append(r)
+                if key not in compared:
+                    passes = self.missing.setdefault(case, [])
+                    if key[2] not in passes:
+                        passes.append(key[2])
+
+    def order(self, key):
+        """A case's passes together, in the order the runs wrote them: variant, parameters, resolution, pass."""
+        return ([oitcsv.sort_key(v) for v in (key[1],) + key[5:] + (key[3], key[4])],
+                self.pass_rank.get((key[0], key[2]), 0))
+
+    def differing(self, exp):
+        """[(field, [A's values, B's values])] for the key fields of `exp` whose values differ between the
+        sides (a parameter scoped away from a row counts as empty), each side's values as text."""
+        fields = [("variant", lambda r: r.get("variant", "")),
+                  ("resolution", lambda r: f"{r.get('width', '')}x{r.get('height', '')}")]
+        fields += [(p, lambda r, p=p: r.get(p, "") if oitcsv.applies(p, r) else "") for p in self.params_of[exp]]
+        out = []
+        for name, get in fields:
+            values = [sorted({get(r) for r in run.rows_of(exp)}, key=oitcsv.sort_key) for run in self.runs]
+            if values[0] != values[1]:
+                shown = ["; ".join(v or "(empty)" for v in vs[:8]) + ("; \u2026" if len(vs) > 8 else "") for vs in values]
+                out.append((name, shown))
+        return out
+
+
+def fmt_ratio(x):
+    return f"{x:.2f}" if abs(x) < 10 else f"{x:.3g}"
+
+
+def badge(status):
+    return f'<span class="badge {esc(status)}">{esc(status)}</span>'
+
+
+def verdict_html(c):
+    if c.kind == compare.CHANGED:
+        label = c.verdict.lower()
+    elif c.kind == compare.IN_BAND:
+        label = f"inside the between-run noise band ({c.band:.2f}x)"
+    elif c.kind == compare.OVERLAP:
+        label = f"beyond the band ({c.band:.2f}x), repetitions overlap"
+    else:
+        label = KIND_LABELS[c.kind]
+    extra = f" {c.verdict.lower()}" if c.kind == compare.CHANGED else ""
+    return f'<span class="verdict {c.kind}{extra}" title="{esc(c.verdict)}">{esc(label)}</span>'
+
+
+def side_cell(rows):
+    """What one side has for a case that was not compared: nothing, ok, or its status and reason."""
+    if not rows:
+        return '<span class="muted">not in this run</span>'
+    bad = [r for r in rows if not oitcsv.is_ok(r)]
+    if not bad:
+        total = next((r for r in rows if r.get("pass") == "total"), rows[0])
+        ms = oitcsv.to_float(total.get("median_ms"))
+        return f'<span class="case">{badge("ok")}' + (f" {esc(compare.fmt_ms(ms))} ms" if ms is not None
+                                                       else " (no median)") + "</span>"
+    row = next((r for r in bad if r.get("pass") == "total"), bad[0])
+    return badge(oitcsv.status_of(row)) + " " + reason_html(row.get("reason", ""))
+
+
+def counts_cells(n):
+    return [str(n[compare.NO_DIFFERENCE]), str(n[compare.IN_BAND]), str(n[compare.OVERLAP]),
+            str(n["slower"]), str(n["faster"])]
+
+
+def sides_section(page, sides):
+    """The header: for each side, the driver and everything else that identifies the run."""
+    a, b = sides
+    columns = ["driver"] + [c for c in oitcsv.RUN_COLUMNS if c != "driver" and c not in SHOWN_ELSEWHERE]
+    columns.append("timer")  # a ratio of two rows is of their primary clocks
+    labels = dict(META_COLUMNS)
+    described = {c["name"]: c["description"] for c in oitcsv.SCHEMA["summary_columns"]}
+    rows, classes = [], []
+
+    def add(label, values, title=""):
+        cells = [v if isinstance(v, Html) else esc(v) for v in values]
+        rows.append([f'<span title="{esc(title)}">{esc(label)}</span>' if title else esc(label)] + cells)
+        classes.append("differs" if values[0] != values[1] else "")
+
+    add("folder", [f"{s.name}/" + ("presets/" if s.folder != s.path else "") for s in sides])
+    for col in columns:
+        add(labels.get(col, col), ["; ".join(s.values(col)) or "(not recorded)" for s in sides], described.get(col, ""))
+    ranges, cases = [], []
+    for s in sides:
+        stamps = sorted(s.values("timestamp_utc"))
+        ranges.append(f"{stamps[0]} \u2013 {stamps[-1]}" if stamps else "(not recorded)")
+        facts = [Facts(run) for run in s.presets.values()]
+        status = sum((f.status for f in facts), collections.Counter())
+        cases.append(Html(f"{sum(f.cases for f in facts)} " + status_badges(status, always=False)))
+    add("timestamps (UTC)", ranges)
+    add("presets", [f"{len(s.presets)}: " + ", ".join(sorted(s.presets)) for s in sides])
+    add("cases", cases)
+    page.section(2, "runs", "The two runs")
+    page.add(html_table(["", f"A: {a.label}", f"B: {b.label}"], rows, classes=classes))
+    page.add("<p class='muted small'>Highlighted rows differ between the two sides. Hover a name for its "
+             "meaning (docs/csv-schema.md).</p>")
+    for s in sides:
+        if s.orphans:
+            page.add(f"<p class='muted'>{esc(s.label)}: raw files without their summary, left out: " +
+                     ", ".join(f"<code>{esc(o)}</code>" for o in s.orphans) + "</p>")
+
+
+def compare_howto(page, stats, sides):
+    a, b = (s.label for s in sides)
+    page.section(2, "how-to-read", "How to read this page")
+    items = [
+        ("Ratio", f"per case, the median time on <b>{esc(b)}</b> over the median on <b>{esc(a)}</b> (each row's "
+         "primary clock): below 1, B is faster. A case is the same experiment, variant, pass, resolution and "
+         "every parameter the case uses; the run columns above (driver, commit, machine) are not part of it."),
+        ("95% CI", "a bootstrap over the repetitions where both sides have their raw files "
+         f"(NAME_raw.csv; {stats.bootstrap} resamples, seed {stats.seed}), else from each median's MAD."),
+        ("Verdict", "<b>no measurable difference</b>: the interval includes 1. <b>inside the between-run noise "
+         "band</b>: the interval excludes 1, so the two runs differ, but by less than identical code moves "
+         f"between runs (at least {stats.min_effect:g}x, wider for cases with noisy repetitions): not "
+         "attributable to the driver or the code from one run of each. <b>beyond the band, repetitions "
+         "overlap</b>: not attributable either. <span class='verdict changed slower'>slower</span> / "
+         "<span class='verdict changed faster'>faster</span>: changed (interval clear of 1, ratio beyond the "
+         "band, repetitions apart). Hover a verdict for compare.py's sentence."),
+        ("Figures", "<code>scripts/compare.py</code>'s: each case's ratio with its interval on a log axis, the "
+         "noise band in grey, changed cases ringed in red. Click one for its SVG."),
+        ("Not compared", "cases on one side only, or not ok on one side, with each side's status and reason. "
+         "Where cases of an experiment do not join, the key fields whose values differ are named."),
+    ]
+    page.add('<dl class="howto">' + "".join(f"<dt>{k}</dt><dd>{v}</dd>" for k, v in items) + "</dl>")
+
+
+def summary_section(page, pairs, sides, only, stats):
+    page.section(2, "summary", "Summary")
+    every = [c for p in pairs for c in p.comparisons]
+    page.add(f'<p class="lead">{len(pairs)} preset(s) in both folders. '
+             f"{esc(compare.summary_text(every, stats.min_effect))}.</p>")
+    rows = []
+    for p in pairs:
+        rows.append([f'<a class="case" href="#{esc(p.anchor)}">{esc(p.name)}</a>', str(len(p.comparisons))] + counts_cells(p.counts)
+                    + [str(len(p.missing))])
+    for s, names in zip(sides, only):
+        for name in names:
+            rows.append([f'<span class="case">{esc(name)}</span>', f'<span class="muted">only in {esc(s.label)}</span>'] + [""] * 5 +
+                        [str(Facts(s.presets[name]).cases)])
+    page.add(html_table(["preset", "compared", "no measurable difference", "inside the noise band",
+                         "repetitions overlap", "slower", "faster", "cases not compared"], rows,
+                        numeric=[False] + [True] * 7))
+
+
+def preset_block(page, p, sides, out_dir, stats, failures):
+    """One preset: per experiment its ratio table and figures, then the cases not compared."""
+    a, b = sides
+    page.section(3, p.anchor, p.name, claimed=True)
+    page.add(f"<p>{esc(compare.summary_text(p.comparisons, stats.min_effect))}.</p>")
+    fig_rel = os.path.join("figures", p.name)
+    fig_dir = os.path.join(out_dir, fig_rel)
+    os.makedirs(fig_dir, exist_ok=True)
+    if p.comparisons:
+        compare.write_csv(os.path.join(fig_dir, "compare.csv"), p.comparisons, p.params_of)
+        page.add(f"<p class='muted small'>The ratios as CSV: <a href=\"{url(os.path.join(fig_rel, 'compare.csv'))}\">"
+                 f"{esc(os.path.join(fig_rel, 'compare.csv'))}</a></p>")
+    n_figures = 0
+    for exp in p.experiments:
+        comps = sorted((c for c in p.comparisons if c.key[0] == exp), key=lambda c: p.order(c.key))
+        if not comps:
+            continue
+        params = p.params_of[exp]
+        constant = compare.constant_fields([c.key for c in comps], params)
+        shared = compare.shared_text(comps[0].key, params, constant)
+        page.section(4, f"{p.anchor}-{slug(exp)}", exp)
+        mad = sum(1 for c in comps if c.ci_method != "bootstrap")
+        how = ("intervals from a bootstrap over the repetitions" if not mad else "intervals from the MADs"
+               if mad == len(comps) else "intervals from a bootstrap over the repetitions (\u2020: from the MADs)")
+        page.add(f"<p class='muted'>{len(comps)} comparison(s), {how}" +
+                 (f"; every case: <code>{esc(shared)}</code>" if shared else "") + "</p>")
+        rows, classes = [], []
+        for c in comps:
+            rows.append([f'<span class="case">{esc(compare.describe_key(c.key, params, constant))}</span>',
+                         esc(compare.fmt_ms(c.base.median)),
+                         esc(compare.fmt_ms(c.other.median)), f"{fmt_ratio(c.ratio)}x",
+                         f"[{fmt_ratio(c.ci[0])}, {fmt_ratio(c.ci[1])}]" +
+                         ("\u2020" if c.ci_method != "bootstrap" and mad < len(comps) else ""),
+                         f"{c.band:.2f}x", verdict_html(c)])
+            classes.append(c.kind)
+        page.add(html_table(["case", f"A ms ({a.label})", f"B ms ({b.label})", "B / A", "95% CI", "noise band",
+                             "verdict"], rows, numeric=[False, True, True, True, True, True, False], classes=classes))
+        print(f"report.py: figure: {p.name}: {exp}", flush=True)
+        try:
+            written = compare.draw_figures(fig_dir, p.runs, comps, p.params_of, stats, order=p.order)
+        except Exception as e:  # a figure bug on odd data must not cost the rest of the page
+            plot.plt.close("all")
+            failures.append(f"{p.name}: {exp}: {type(e).__name__}: {e}")
+            page.add(f'<p class="note">Figure <code>{esc(exp)}</code> could not be drawn: '
+                     f"{esc(type(e).__name__)}: {esc(e)}</p>")
+            continue
+        for path in written:
+            if not path.endswith(".png"):
+                continue
+            rel = os.path.join(fig_rel, os.path.basename(path))
+            svg = rel[:-len(".png")] + ".svg"
+            n_figures += 1
+            page.add(f'<figure><a href="{url(svg)}">{img_tag(rel, path, f"{exp} ratios of {p.name}", "figure")}</a>'
+                     f'<figcaption>{esc(exp)}: {esc(b.label)} / {esc(a.label)} per case, 95% CI, noise band '
+                     f'&middot; <a href="{url(svg)}">SVG</a></figcaption></figure>')
+    if p.missing:
+        page.section(4, f"{p.anchor}-not-compared", "not compared")
+        rows = []
+        for case, passes in p.missing.items():
+            exp = case[0]
+            key = case[:2] + ("total",) + case[2:]
+            rows.append([esc(exp), esc(compare.describe_key(key, p.params_of[exp])), esc(", ".join(passes))] +
+                        [side_cell(cases.get(case, [])) for cases in p.by_side])
+        page.add(f"<p>{len(p.missing)} case(s) on one side only or not ok on one side.</p>")
+        for exp in distinct(case[0] for case in p.missing):
+            one_side = any(not cases.get(case) for case in p.missing if case[0] == exp for cases in p.by_side)
+            differing = p.differing(exp) if one_side else []
+            if differing:
+                page.add(f"<p class='note'>{esc(exp)}: cases on one side only. The key values that differ between "
+                         "the sides: " + "; ".join(
+                             f"<code>{esc(name)}</code> ({esc(a.label)}: {esc(va)} | {esc(b.label)}: {esc(vb)})"
+                             for name, (va, vb) in differing) + "</p>")
+        page.add(html_table(["experiment", "case", "passes", a.label, b.label], rows))
+    for n in p.notes:
+        page.add(f"<p class='muted'>Note: {esc(n)}</p>")
+    return n_figures
+
+
+def build_compare(args):
+    sides = [Side(path) for path in args.compare]
+    name_sides(sides, args.labels.split(",") if args.labels else None)
+    out = os.path.realpath(args.out_dir)
+    for s in sides:
+        for inside in (os.path.realpath(s.path), os.path.realpath(s.folder)):
+            if out == inside or inside.startswith(out + os.sep):
+                raise oitcsv.ResultsError(f"{args.out_dir}: the page would overwrite its own inputs ({s.path}); "
+                                          "give -o a folder of its own (e.g. RESULTS/compare-A-B)")
+    a, b = sides
+    pairs = [Paired(name, sides, args) for name in sorted(set(a.presets) & set(b.presets))]
+    only = [sorted(set(s.presets) - set(o.presets)) for s, o in ((a, b), (b, a))]
+    prepare_out_dir(args.out_dir)
+    page = Page(args.title or f"oitbench comparison: {b.label} against {a.label}",
+                meta={COMPARE_META: f"{b.label} against {a.label}"})
+    for p in pairs:
+        p.anchor = page.claim("preset-" + slug(p.name))
+    page.add(f'<p class="lead">Generated by <code>scripts/report.py --compare</code>: every preset both folders '
+             f"ran, case by case; ratio = time on <b>{esc(b.label)}</b> / time on <b>{esc(a.label)}</b>, below 1 "
+             f"is faster. Regenerate: <code>/usr/bin/python3 scripts/report.py --compare {esc(shown_path(a.path))} "
+             f"{esc(shown_path(b.path))} -o DIR</code>.</p>")
+    sides_section(page, sides)
+    summary_section(page, pairs, sides, only, args)
+    compare_howto(page, args, sides)
+    page.section(2, "presets", "Presets")
+    failures = []
+    n_figures = sum(preset_block(page, p, sides, args.out_dir, args, failures) for p in pairs)
+    if not pairs:
+        page.add("<p class='note'>The two folders have no preset in common: nothing to compare.</p>")
+    for s, names in zip(sides, only):
+        if names:
+            page.add(f"<p class='muted'>Only in {esc(s.label)} (not compared): " +
+                     ", ".join(f"<code>{esc(n)}</code>" for n in names) + "</p>")
+    with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8", newline="\n") as f:
+        f.write(page.render())
+    every = [c for p in pairs for c in p.comparisons]
+    counts = [plural(len(pairs), "preset") + " compared", plural(len(every), "comparison"), plural(n_figures, "figure")]
+    counts += [f"{len(n)} only in {s.label}" for s, n in zip(sides, only) if n]
+    print(f"report.py: {os.path.join(args.out_dir, 'index.html')}: {', '.join(counts)}")
+    print(f"report.py: {compare.summary_text(every, args.min_effect)} ({b.label} against {a.label})")
+    for fail in failures:
+        print(f"report.py: figure not drawn: {fail}", file=sys.stderr)
+    return 1 if failures else 0
+
+
 # -------------------------------------------------------------------------------------------------- main
 
 def plural(n, word):
@@ -647,7 +1090,8 @@ def build(args):
     images_dir = args.images if args.images else default_images_dir(args.inputs)
     if args.images and not os.path.isdir(args.images):
         raise oitcsv.ResultsError(f"{args.images}: no such images folder (--images)")
-    inputs, skipped, base = collect(args.inputs, args.out_dir, images_dir)
+    pages = []
+    inputs, skipped, base = collect(args.inputs, args.out_dir, images_dir, pages)
     for p in [base] + ([images_dir] if images_dir else []):
         out, inside = os.path.realpath(args.out_dir), os.path.realpath(p)
         if out == inside or inside.startswith(out + os.sep):
@@ -665,6 +1109,7 @@ def build(args):
     paper_dir = args.paper or tables.default_paper_dir()
     howto_section(page, os.path.isdir(paper_dir), bool(images_dir))
     shared = overview_section(page, inputs, facts, skipped)
+    across_section(page, args.inputs, pages, args.out_dir)
     page.section(2, "files", "Results by file")
     failures = []
     n_figures = sum(run_block(page, inp, f, shared, args.out_dir, failures) for inp, f in zip(inputs, facts))
@@ -682,7 +1127,7 @@ def build(args):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("inputs", nargs="+", metavar="CSV_OR_DIR",
+    ap.add_argument("inputs", nargs="*", metavar="CSV_OR_DIR",
                     help="summary CSVs (`oitbench run --out`) or folders to search for them")
     ap.add_argument("-o", "--out-dir", required=True, help="the report's folder (index.html, figures/, images/)")
     ap.add_argument("--paper", help="folder of the papers' tidy CSVs (default: tables.py's, "
@@ -690,10 +1135,29 @@ def main(argv=None):
     ap.add_argument("--images", help="folder of `oitbench render` PNGs (default: images/ in the results folder, "
                                      "or beside the first CSV, when there is one)")
     ap.add_argument("--title", help="the page's title (default: oitbench report: FOLDER)")
+    cmp = ap.add_argument_group("comparison page", "scripts/report.py --compare A B -o DIR: the presets both "
+                                "results folders ran (A/presets/NAME.csv beside B/presets/NAME.csv, with "
+                                "NAME_raw.csv when there is one), case by case, as ratios B/A with 95% intervals "
+                                "and compare.py's verdicts and figures")
+    cmp.add_argument("--compare", nargs=2, metavar=("A", "B"), help="the two results folders; A is the baseline")
+    cmp.add_argument("--labels", metavar="A,B", help="the two sides' names (default: their drivers, else their "
+                                                     "folder names)")
+    compare.add_statistics_options(cmp)
     args = ap.parse_args(argv)
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
+    if args.compare:
+        if args.inputs:
+            ap.error("give CSV_OR_DIR inputs or --compare A B, not both")
+        if args.paper or args.images:
+            ap.error("--paper and --images are for the report of runs, not --compare")
+        if args.labels and len(args.labels.split(",")) != 2:
+            ap.error("--labels takes two names: A,B")
+    elif not args.inputs:
+        ap.error("the following arguments are required: CSV_OR_DIR (or --compare A B)")
+    elif args.labels:
+        ap.error("--labels is for --compare")
     try:
-        return build(args)
+        return build_compare(args) if args.compare else build(args)
     except oitcsv.ResultsError as e:
         print(f"report.py: {e}", file=sys.stderr)
         return 2

@@ -1,10 +1,16 @@
 """report.py: one static HTML page from runs, checked in a real headless browser (Debian's chromium): the
 page loads, every image decodes and the figures are all there, and a figure deleted afterwards is caught.
 Also: the metadata and every failed case with its reason, the paper tables, a results folder searched by
-header (summary files only), the same page from the same results, and errors that exit 2."""
+header (summary files only), the same page from the same results, and errors that exit 2.
+report.py --compare: two results folders written by the binary on llvmpipe and on zink, one page of
+per-case ratios (in the browser too), its header, the cases it could not compare, the same bytes twice,
+bad input, a tight 0.74x said to be inside the noise band, and a results root linking its pages."""
+import csv
 import html.parser
 import json
 import os
+import random
+import re
 import shutil
 import struct
 import subprocess
@@ -13,7 +19,7 @@ import unittest
 import zlib
 
 import synthetic as syn
-from support import PNG_MAGIC, TempDirTest, run_script
+from support import PNG_MAGIC, PYTHON, TempDirTest, oitbench_exe, run_oitbench, run_script
 from test_tables import MINI_PAPER
 
 CHROMIUM = "/usr/bin/chromium"
@@ -246,6 +252,284 @@ class ReportContent(ReportCase):
         self.assertEqual(proc.returncode, 2)
         self.assertIn("not empty and not a previous report", proc.stderr)
         self.assertTrue(os.path.isfile(self.path("busy/keep.txt")))
+
+
+# ---------------------------------------------------------------------------------- report.py --compare
+
+class TableParser(html.parser.HTMLParser):
+    """Every <tr> of a page: its class and its cells' text (a cell's title attributes kept apart)."""
+
+    def __init__(self, text):
+        super().__init__()
+        self.rows = []  # (class, [cell text], [titles])
+        self._cell = None
+        self.feed(text)
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if tag == "tr":
+            self.rows.append((attrs.get("class", ""), [], []))
+        elif tag in ("td", "th") and self.rows:
+            self._cell = []
+            self.rows[-1][1].append("")
+        if attrs.get("title") and self.rows:
+            self.rows[-1][2].append(attrs["title"])
+
+    def handle_endtag(self, tag):
+        if tag in ("td", "th"):
+            self._cell = None
+
+    def handle_data(self, data):
+        if self._cell is not None and self.rows:
+            self.rows[-1][1][-1] += data
+
+    def ratio_rows(self):
+        """The rows of the per-case ratio tables: (verdict class, cells, titles)."""
+        return [r for r in self.rows if r[0] in ("none", "band", "overlap", "changed")]
+
+
+RATIO = re.compile(r"^\d+(\.\d+)?x$")
+INTERVAL = re.compile(r"^\[(\d+(?:\.\d+)?), (\d+(?:\.\d+)?)\]\u2020?$")
+
+
+def write_side(folder, presets, raw=True, rng_seed=1, **kw):
+    """A results folder: folder/presets/NAME.csv (and NAME_raw.csv) for each NAME: rows."""
+    os.makedirs(os.path.join(folder, "presets"), exist_ok=True)
+    for i, (name, (rows, metrics, params)) in enumerate(sorted(presets.items())):
+        syn.write_summary(os.path.join(folder, "presets", f"{name}.csv"), rows, metrics, params,
+                          raw_path=os.path.join(folder, "presets", f"{name}_raw.csv") if raw else None,
+                          rng=random.Random(rng_seed + i), **kw)
+    return folder
+
+
+class ComparePageSynthetic(ReportCase):
+    def compare_page(self, a, b, out="cmp", check=True, extra=()):
+        return run_script("report.py", "--compare", a, b, "-o", self.path(out), *extra, check=check)
+
+    def test_a_resolved_difference_inside_the_band_is_said_to_be_one(self):
+        base = [dict(r, noise=0.01) for r in syn.occupancy_rows() if "reason" not in r]
+        factor = {"dynamic": 0.74, "unrolled": 1.0}
+        other = [dict(r, median_ms=r["median_ms"] * factor[r["variant"]],
+                      noise=0.01 if r["variant"] == "dynamic" else 0.2) for r in base]
+        a = write_side(self.path("a"), {"occ": (base, syn.OCCUPANCY_METRICS, syn.OCCUPANCY_PARAMS)})
+        b = write_side(self.path("b"), {"occ": (other, syn.OCCUPANCY_METRICS, syn.OCCUPANCY_PARAMS)}, rng_seed=5)
+        proc = self.compare_page(a, b)
+        n = len(base) // 2
+        self.assertIn(f"{n} no measurable difference, {n} inside the between-run noise band (at least 1.5x), "
+                      "0 beyond it with overlapping repetitions, 0 changed (0 slower, 0 faster)", proc.stdout)
+        rows = TableParser(read(self.path("cmp/index.html"))).ratio_rows()
+        self.assertEqual(len(rows), len(base))
+        for kind, cells, titles in rows:
+            case, verdict = cells[0], cells[-1]
+            lo, hi = (float(x) for x in INTERVAL.match(cells[4]).groups())
+            if case.startswith("dynamic"):
+                self.assertEqual(cells[3], "0.74x", cells)
+                self.assertTrue(hi < 1, cells)  # tight: the interval excludes 1 ...
+                self.assertEqual(kind, "band", cells)  # ... so it is no "no difference"
+                self.assertNotIn("no measurable difference", verdict)
+                self.assertIn("inside the between-run noise band (1.50x)", verdict)
+                self.assertIn("not attributable to the driver or code from one run of each", " ".join(titles))
+            else:
+                self.assertTrue(lo <= 1 <= hi, cells)
+                self.assertEqual((kind, verdict), ("none", "no measurable difference"), cells)
+
+    def test_bad_input_exits_2_naming_it(self):
+        sort = (syn.sort_rows(), [], ["n", "keys"])
+        a = write_side(self.path("a"), {"sort": sort})
+        os.makedirs(self.path("empty"))
+        proc = self.compare_page(a, self.path("empty"), check=False)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn(f"{self.path('empty')}: no oitbench summary CSV here", proc.stderr)
+        b = write_side(self.path("b"), {"sort": sort})
+        with open(os.path.join(b, "presets", "broken.csv"), "wb") as f:
+            f.write(b"\x89PNG\r\n\x1a\n\x00\x00 not a csv \xff\n")
+        proc = self.compare_page(a, b, check=False)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn(os.path.join(b, "presets", "broken.csv") + ": not a text file", proc.stderr)
+        with open(os.path.join(b, "presets", "broken.csv"), "w", encoding="utf-8") as f:
+            f.write("name,value\nx,1\n")
+        proc = self.compare_page(a, b, check=False)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn(os.path.join(b, "presets", "broken.csv") + ": not an oitbench summary or --raw CSV", proc.stderr)
+        proc = self.compare_page(a, os.path.join(a, "presets", "sort.csv"), check=False)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn("sort.csv: not a folder", proc.stderr)
+        proc = self.compare_page(a, self.path("nowhere"), check=False)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn("nowhere: no such folder", proc.stderr)
+        proc = run_script("report.py", "--compare", a, a, "-o", os.path.join(a, "presets"), check=False)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn("would overwrite its own inputs", proc.stderr)
+        proc = run_script("report.py", a, "--compare", a, a, "-o", self.path("x"), check=False)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn("not both", proc.stderr)
+        self.assertFalse(os.path.exists(self.path("cmp/index.html")))  # nothing written on bad input
+
+    def test_a_figure_that_fails_exits_1_and_the_page_says_so(self):
+        sort = (syn.sort_rows(), [], ["n", "keys"])
+        a = write_side(self.path("a"), {"sort": sort})
+        b = write_side(self.path("b"), {"sort": sort}, rng_seed=3)
+        code = ("import sys; sys.path.insert(0, sys.argv[1]); import compare, report\n"
+                "def fail(*args, **kwargs): raise ValueError('no figure today')\n"
+                "compare.draw_figures = fail\n"
+                "sys.exit(report.main(sys.argv[2:]))")
+        proc = subprocess.run([PYTHON, "-c", code, syn.SCRIPTS, "--compare", a, b, "-o", self.path("cmp")],
+                              capture_output=True, text=True, timeout=300, env=dict(os.environ, MPLBACKEND="Agg"))
+        self.assertEqual(proc.returncode, 1, proc.stderr)
+        self.assertIn("figure not drawn: sort: sort: ValueError: no figure today", proc.stderr)
+        self.assertIn("could not be drawn: ValueError: no figure today", read(self.path("cmp/index.html")))
+
+    def test_a_results_root_links_its_comparison_pages(self):
+        sort = (syn.sort_rows(), [], ["n", "keys"])
+        root = self.path("results")
+        write_side(os.path.join(root, "llvmpipe"), {"sort": sort})
+        write_side(os.path.join(root, "zink-lavapipe"), {"sort": sort}, rng_seed=9)
+        proc = self.report(root, out="results/report", extra=("--paper", self.path("nowhere")))
+        page = read(self.path("results/report/index.html"))
+        self.assertIn('href="#across-drivers"', page)
+        self.assertIn("No comparison page here yet", page)
+        self.assertIn("--compare", page)
+        self.compare_page(os.path.join(root, "llvmpipe"), os.path.join(root, "zink-lavapipe"),
+                          out="results/compare-llvmpipe-zink")
+        proc = self.report(root, out="results/report", extra=("--paper", self.path("nowhere")))
+        self.assertIn(": 2 runs, 2 figures", proc.stdout)  # the comparison's compare.csv files are not runs
+        self.assertNotIn("compare.csv", read(self.path("results/report/index.html")))
+        links = [href for href in re.findall(r'href="([^"#]+)"', read(self.path("results/report/index.html")))
+                 if "compare" in href]
+        self.assertEqual(links, ["../compare-llvmpipe-zink/index.html"])
+        self.assertTrue(os.path.isfile(os.path.join(self.path("results/report"), links[0])))
+        # The comparison page, rewritten in place, is replaced like a report.
+        self.compare_page(os.path.join(root, "llvmpipe"), os.path.join(root, "zink-lavapipe"),
+                          out="results/compare-llvmpipe-zink")
+
+
+@unittest.skipUnless(oitbench_exe(), "OITBENCH_EXE not set (ctest sets it)")
+class ComparePageRealDrivers(ReportCase):
+    """Two results folders written by the binary on llvmpipe and on zink (GL on Vulkan over lavapipe): the
+    smoke preset and a quick oit grid on each. B then loses one oit case and has one smoke case
+    unsupported, as a driver might."""
+
+    OIT = ["run", "oit", "--quick", "--set", "scene=planes", "--set", "technique=BASE-IS,BASE-RBS-L"]
+    DROPPED = {"technique": "BASE-RBS-L", "view": "rev"}  # removed from B's oit files
+    UNSUPPORTED = {"variant": "unrolled", "size": "33"}  # made unsupported in B's smoke-test file
+
+    @classmethod
+    def setUpClass(cls):
+        cls.root = tempfile.mkdtemp(prefix="oitbench-compare-")
+        for side, driver in (("A", "llvmpipe"), ("B", "zink")):
+            presets = os.path.join(cls.root, side, "presets")
+            os.makedirs(presets)
+            for name, args in (("smoke-test", ["run", "--preset", "smoke-test"]), ("oit-planes", cls.OIT)):
+                run_oitbench(*args, "--driver", driver, "--no-progress", "--out",
+                             os.path.join(presets, f"{name}.csv"), "--raw", os.path.join(presets, f"{name}_raw.csv"))
+        b = os.path.join(cls.root, "B", "presets")
+        for name in ("oit-planes.csv", "oit-planes_raw.csv"):
+            cls.edit(os.path.join(b, name), lambda r: None if all(r[k] == v for k, v in cls.DROPPED.items()) else r)
+
+        def unsupported(r):
+            if all(r[k] == v for k, v in cls.UNSUPPORTED.items()):
+                r.update(status="unsupported", valid="0", reason="test: this driver lacks it", median_ms="")
+            return r
+        cls.edit(os.path.join(b, "smoke-test.csv"), unsupported)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.root, ignore_errors=True)
+
+    @staticmethod
+    def edit(path, change):
+        with open(path, newline="", encoding="utf-8") as f:
+            reader = csv.DictReader(f)
+            header, rows = reader.fieldnames, [change(dict(r)) for r in reader]
+        with open(path, "w", newline="", encoding="utf-8") as f:
+            w = csv.DictWriter(f, fieldnames=header, lineterminator="\n")
+            w.writeheader()
+            w.writerows(r for r in rows if r is not None)
+
+    def side(self, name):
+        return os.path.join(self.root, name)
+
+    def rows(self, side, preset):
+        with open(os.path.join(self.side(side), "presets", f"{preset}.csv"), newline="", encoding="utf-8") as f:
+            return list(csv.DictReader(f))
+
+    def build(self, out="cmp"):
+        proc = run_script("report.py", "--compare", self.side("A"), self.side("B"), "-o", self.path(out))
+        return proc, self.path(f"{out}/index.html")
+
+    def test_the_page_loads_with_every_figure(self):
+        _, index = self.build()
+        parsed = PageParser(read(index)).images
+        figures = [src for src, cls in parsed if cls == "figure"]
+        self.assertEqual(len(figures), 2, parsed)  # occupancy (smoke-test) and oit (oit-planes)
+        for src in figures:
+            self.assertFalse(os.path.isabs(src) or src.startswith(("file:", "/")), src)
+        images, n_figures, broken, _ = browser_check(index)
+        self.assertEqual((images, n_figures, broken), (len(parsed), 2, []))
+
+    def test_the_header_names_both_drivers_and_their_runs(self):
+        _, index = self.build()
+        table = {cells[0]: cells[1:] for _, cells, _ in TableParser(read(index)).rows if len(cells) == 3}
+        self.assertEqual(table["driver"], ["llvmpipe", "zink-lavapipe"])
+        self.assertTrue(table["GL_RENDERER"][0].startswith("llvmpipe"), table["GL_RENDERER"])
+        self.assertTrue(table["GL_RENDERER"][1].startswith("zink"), table["GL_RENDERER"])
+        self.assertIn("GALLIUM_DRIVER=zink", table["environment"][1])
+        for field in ("GL_VERSION", "backend", "LP_NUM_THREADS", "git sha", "hostname", "CPU", "timestamps (UTC)"):
+            self.assertTrue(all(table[field]) and "(not recorded)" not in table[field], (field, table.get(field)))
+        self.assertIn("<title>oitbench comparison: zink-lavapipe against llvmpipe</title>", read(index))
+
+    def test_every_shared_case_has_a_ratio_with_an_interval(self):
+        proc, index = self.build()
+        by_ms = {}
+        for kind, cells, _ in TableParser(read(index)).ratio_rows():
+            by_ms.setdefault((cells[1], cells[2]), []).append(cells)
+        def case(r):  # the same binary wrote both sides: each row names the parameters its case uses
+            return (r["experiment"], r["variant"], r["pass"], r["width"], r["height"]) + tuple(
+                (p, r[p]) for p in r["parameters"].split(";"))
+
+        expected = 0
+        for preset in ("smoke-test", "oit-planes"):
+            b_rows = {case(r): r for r in self.rows("B", preset) if r["status"] == "ok"}
+            for r in self.rows("A", preset):
+                other = b_rows.get(case(r))
+                if other is None:
+                    continue
+                expected += 1
+                pair = (format(float(r["median_ms"]), ".4g"), format(float(other["median_ms"]), ".4g"))
+                self.assertIn(pair, by_ms, f"no ratio row for {preset} {r['variant']} {r['pass']}")
+                for cells in by_ms[pair]:
+                    self.assertRegex(cells[3], RATIO)
+                    ratio = float(cells[3][:-1])
+                    self.assertAlmostEqual(ratio, float(other["median_ms"]) / float(r["median_ms"]), delta=0.006)
+                    self.assertRegex(cells[4], INTERVAL)
+        self.assertEqual(sum(len(v) for v in by_ms.values()), expected)
+        self.assertEqual(expected, 3 + 9)  # smoke: 4 less the unsupported one; oit: 12 less the dropped 3 passes
+        self.assertIn(f"{expected} comparisons", proc.stdout)
+
+    def test_cases_on_one_side_or_not_ok_are_listed_with_status_and_reason(self):
+        _, index = self.build()
+        rows = [cells for _, cells, _ in TableParser(read(index)).rows if len(cells) == 5 and cells[0] != "experiment"]
+        dropped = [c for c in rows if "technique=BASE-RBS-L" in c[1] and "view=rev" in c[1]]
+        self.assertEqual(len(dropped), 1, rows)
+        self.assertEqual(dropped[0][2], "capture, resolve, total")
+        self.assertTrue(dropped[0][3].startswith("ok "), dropped)
+        self.assertEqual(dropped[0][4], "not in this run")
+        unsupported = [c for c in rows if c[1].startswith("unrolled size=33")]
+        self.assertEqual(len(unsupported), 1, rows)
+        self.assertTrue(unsupported[0][3].startswith("ok "), unsupported)
+        self.assertEqual(unsupported[0][4], "unsupported test: this driver lacks it")
+
+    def test_the_same_inputs_give_the_same_bytes(self):
+        self.build("one")
+        self.build("two")
+        files = []
+        for root, _, names in os.walk(self.path("one")):
+            files += [os.path.relpath(os.path.join(root, n), self.path("one")) for n in names]
+        self.assertGreaterEqual(len(files), 1 + 2 * 3)  # the page, and per preset a PNG, an SVG and a CSV
+        for rel in files:
+            with open(os.path.join(self.path("one"), rel), "rb") as f1, \
+                    open(os.path.join(self.path("two"), rel), "rb") as f2:
+                self.assertEqual(f1.read(), f2.read(), f"{rel} differs between two pages of the same inputs")
 
 
 if __name__ == "__main__":
