@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# The run that matters on a real GPU, within about 8 minutes on one modern GPU: info, the occupancy
+# study, register vs local sorts, the Knowles 2014 resolves and Brüll's approximate OIT at the papers'
+# sizes; then the report page. Results go to results/<driver>/ (the `driver` column, e.g. nvidia-h200).
+#
+#   scripts/gpu-run.sh [--smoke] [--driver NAME] [--out DIR]
+#
+#   --smoke        the same steps at tiny sizes, to check the script and a driver in a minute or two
+#   --driver NAME  passed to oitbench (default, llvmpipe, zink, egl-device-N; see: oitbench info --drivers)
+#   --out DIR      write here instead of results/<driver>/ (results/<driver>-smoke/ with --smoke)
+#
+# The steps (GPU sizes; --smoke in brackets):
+#   info           oitbench info and info --drivers (info.txt)
+#   occupancy      dynamic and unrolled, 800x600, 64 draws, sizes 1-256        [64x48, 4 draws, 1 33]
+#   sort           800x800, n 8-32, both memories, every sort (fragment pass)  [32x32, n 8, 3 sorts]
+#   knowles2014    1920x1080, planes and hairball fwd/rev, the engine grid V1-V3: BASE-IS, BASE-RBS-L,
+#                  BMA-IS, BMA-RBS-L, BMA-AUTO, CS-RBS-L, blocks of 32          [64x64, the small scenes]
+#   bruell2018-approx  the preset at 1920x1080                                 [48x48]
+#   report         scripts/report.py OUT -o OUT/report
+# Each step's rows are in OUT/presets/STEP.csv (and STEP_raw.csv), with the preset column naming the
+# paper preset, so scripts/tables.py puts them beside the papers' tables.
+#
+# OITBENCH=path/to/oitbench runs that binary (default: build/oitbench beside this script's folder, or
+# bin/oitbench in an unpacked bundle). Exit codes: 0 every step ran (rows may still be invalid: the
+# summary says how many); 1 a step failed (the others still ran); 2 usage error; 130 interrupted.
+set -uo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
+
+smoke=0
+driver=default
+out=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --smoke) smoke=1 ;;
+    --driver) [ $# -ge 2 ] || { echo "gpu-run.sh: --driver needs a name" >&2; exit 2; }; driver=$2; shift ;;
+    --out) [ $# -ge 2 ] || { echo "gpu-run.sh: --out needs a folder" >&2; exit 2; }; out=$2; shift ;;
+    -h|--help) usage; exit 0 ;;
+    *) echo "gpu-run.sh: unknown argument '$1'" >&2; usage >&2; exit 2 ;;
+  esac
+  shift
+done
+
+exe=${OITBENCH:-}
+if [ -z "$exe" ]; then
+  for c in "$here/../build/oitbench" "$here/../../../bin/oitbench" "$here/../bin/oitbench"; do
+    [ -x "$c" ] && { exe=$c; break; }
+  done
+fi
+[ -n "$exe" ] && [ -x "$exe" ] || { echo "gpu-run.sh: no oitbench binary (build it, or set OITBENCH=path)" >&2; exit 2; }
+PYTHON=/usr/bin/python3
+[ -x "$PYTHON" ] || PYTHON=$(command -v python3 || true)
+
+info=$("$exe" info --driver "$driver" 2>&1) || { echo "gpu-run.sh: no GL context on driver '$driver':" >&2; echo "$info" >&2; exit 1; }
+slug=$(printf '%s\n' "$info" | awk -F': *' '/^driver:/ { split($2, a, " "); print a[1]; exit }')
+[ -n "$slug" ] || slug=unknown
+if [ -z "$out" ]; then
+  out="$here/../results/$slug"
+  [ $smoke -eq 1 ] && out="$out-smoke"
+fi
+mkdir -p "$out/presets" || exit 1
+echo "gpu-run.sh: $(printf '%s\n' "$info" | awk -F': *' '/^GL_RENDERER:/ { print $2; exit }') -> $out"
+
+stopped=0
+trap 'stopped=1' INT TERM
+failed=()
+run_step() {  # NAME PRESET_NAME oitbench-run-arguments...
+  local name=$1 preset=$2
+  shift 2
+  [ $stopped -eq 1 ] && return
+  local csv="$out/presets/$name.csv" raw="$out/presets/${name}_raw.csv"
+  rm -f "$csv" "$raw"
+  local t0=$SECONDS
+  "$exe" run --driver "$driver" --preset-name "$preset" --out "$csv" --raw "$raw" "$@"
+  local rc=$?
+  echo "gpu-run.sh: $name: exit $rc in $((SECONDS - t0)) s"
+  [ $rc -eq 130 ] && stopped=1
+  [ $rc -ne 0 ] && [ $rc -ne 130 ] && failed+=("$name (exit $rc)")
+}
+
+{
+  printf '%s\n\n' "$info"
+  "$exe" info --drivers 2>&1
+} >"$out/info.txt"
+
+techniques=BASE-IS,BASE-RBS-L,BMA-IS,BMA-RBS-L,BMA-AUTO,CS-RBS-L
+if [ $smoke -eq 1 ]; then
+  run_step occupancy gpu-run-occupancy occupancy --set variant=dynamic,unrolled --set size=1,33 --set draws=4 \
+    --resolution 64x48 --reps 2 --warmup 1
+  run_step sort gpu-run-sort sort --set variant=insertion-naive,insertion-v2,rbs --set n=8 --set memory=local,registers \
+    --set stage=fragment --resolution 32x32 --reps 2 --warmup 1
+  run_step knowles2014 knowles2014 oit --set scene=planes,hairball --set view=fwd,rev --set detail=small \
+    --set technique=$techniques --set block=32 --resolution 64x64 --reps 2 --warmup 1
+  run_step knowles2014-engine-grid knowles2014 oit --set scene=engine-grid --set view=V1 --set detail=small \
+    --set technique=BASE-IS,BMA-RBS-L --set block=32 --resolution 64x64 --reps 2 --warmup 1
+  run_step bruell2018-approx bruell2018-approx --preset bruell2018-approx --resolution 48x48 --reps 2 --warmup 1
+else
+  run_step occupancy gpu-run-occupancy occupancy --set variant=dynamic,unrolled \
+    --set size=1,2,4,8,16,24,32,33,48,64,96,128,192,256 --set draws=64 --resolution 800x600 --reps 5 --warmup 1
+  run_step sort gpu-run-sort sort --set n=8,12,16,20,24,28,32 --set memory=local,registers --set stage=fragment \
+    --resolution 800x800 --reps 5 --warmup 1
+  run_step knowles2014 knowles2014 oit --set scene=planes,hairball --set view=fwd,rev --set technique=$techniques \
+    --set block=32 --resolution 1920x1080 --reps 5 --warmup 1
+  run_step knowles2014-engine-grid knowles2014 oit --set scene=engine-grid --set view=V1,V2,V3 \
+    --set technique=$techniques --set block=32 --resolution 1920x1080 --reps 5 --warmup 1
+  run_step bruell2018-approx bruell2018-approx --preset bruell2018-approx --resolution 1920x1080 --reps 5 --warmup 1
+fi
+
+if [ $stopped -eq 0 ] && [ -n "$PYTHON" ] && [ -f "$here/report.py" ]; then
+  "$PYTHON" "$here/report.py" "$out" -o "$out/report" >/dev/null || failed+=("report (exit $?)")
+fi
+# One line per step: how many cases ended how.
+for f in "$out"/presets/*.csv; do
+  case "$f" in *_raw.csv) continue ;; esac
+  [ -f "$f" ] || continue
+  awk -F, -v name="$(basename "$f" .csv)" '
+    NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "status") s = i; if ($i == "pass") p = i }; next }
+    $p == "total" { n[$s]++ }
+    END { line = ""; for (k in n) line = line " " n[k] " " k; print "gpu-run.sh: " name ":" line }' "$f"
+done
+[ $stopped -eq 1 ] && { echo "gpu-run.sh: interrupted; finished rows are in $out/presets" >&2; exit 130; }
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "gpu-run.sh: failed: ${failed[*]}" >&2
+  exit 1
+fi
+echo "gpu-run.sh: done in $SECONDS s -> $out"
