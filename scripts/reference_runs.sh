@@ -7,6 +7,9 @@
 #   scripts/reference_runs.sh                      build, every preset, info, images, report, findings
 #   scripts/reference_runs.sh --only P1,P2         build, those presets, info, report, findings ("images" renders them)
 #   scripts/reference_runs.sh --report-only        the report and the findings from the CSVs already there
+#   scripts/reference_runs.sh --driver zink --only default,knowles2014-quick,bruell2018-approx
+#                                                  the same on another driver, into results/<its driver>/
+#                                                  (zink over lavapipe: results/zink-lavapipe/)
 #
 # OITBENCH=path/to/oitbench runs that binary instead of building build/oitbench; it reads presets,
 # shaders and scenes from its own source tree unless OITBENCH_PRESETS / OITBENCH_SHADERS / OITBENCH_SCENES
@@ -15,7 +18,8 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
-OUT=results/llvmpipe
+OUT=""
+driver=llvmpipe
 PYTHON=/usr/bin/python3
 RENDER_RESOLUTION=256x256
 # name | render arguments: the papers' hard cases (the hairball back to front) with an exact resolve,
@@ -41,6 +45,8 @@ while [ $# -gt 0 ]; do
             only=$2; shift 2 ;;
     --only=*) only=${1#--only=}; shift ;;
     --report-only) report_only=1; shift ;;
+    --driver) [ $# -ge 2 ] || { echo "reference_runs.sh: --driver needs a name" >&2; exit 2; }
+              driver=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "reference_runs.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
   esac
@@ -62,6 +68,22 @@ if [ -n "$only" ]; then
       exit 2
     fi
   done
+fi
+
+if [ -z "${OITBENCH:-}" ] && [ $report_only -eq 0 ]; then
+  echo "[reference] build: scripts/build.sh"
+  scripts/build.sh || { echo "reference_runs.sh: the build failed" >&2; exit 1; }
+  OITBENCH=build/oitbench
+fi
+# results/<driver>/, named by the driver column the rows will carry (llvmpipe, zink-lavapipe, ...).
+if [ "$driver" = llvmpipe ]; then
+  OUT=results/llvmpipe
+elif [ $report_only -eq 1 ]; then
+  OUT=results/$driver
+else
+  slug=$("$OITBENCH" info --driver "$driver" 2>/dev/null | awk -F': *' '/^driver:/ { split($2, a, " "); print a[1]; exit }')
+  [ -n "$slug" ] || { echo "reference_runs.sh: driver '$driver' gives no context (oitbench info --drivers)" >&2; exit 1; }
+  OUT=results/$slug
 fi
 
 started=$SECONDS
@@ -95,11 +117,6 @@ if [ $report_only -eq 1 ]; then
   finish
 fi
 
-if [ -z "${OITBENCH:-}" ]; then
-  say "build: scripts/build.sh"
-  scripts/build.sh || { say "the build failed"; exit 1; }
-  OITBENCH=build/oitbench
-fi
 [ -x "$OITBENCH" ] || { echo "reference_runs.sh: $OITBENCH is not an executable (OITBENCH=...)" >&2; exit 2; }
 
 mkdir -p "$OUT/presets"
@@ -111,7 +128,7 @@ for name in "${presets[@]}"; do
   rm -f "$csv" "$raw"  # --out appends to a file with the same header: start from nothing
   say "preset $i/${#presets[@]}: $name"
   t0=$SECONDS
-  "$OITBENCH" run --preset "$name" --out "$csv" --raw "$raw"
+  "$OITBENCH" run --preset "$name" --driver "$driver" --out "$csv" --raw "$raw"
   rc=$?
   [ $rc -eq 130 ] && { say "interrupted during $name"; exit 130; }
   say "preset $name: exit $rc after $(((SECONDS - t0) / 60))m$(((SECONDS - t0) % 60))s"
@@ -119,7 +136,7 @@ for name in "${presets[@]}"; do
 done
 
 say "info: $OITBENCH info > $OUT/info.txt"
-"$OITBENCH" info > "$OUT/info.txt" || failed+=("info")
+"$OITBENCH" info --driver "$driver" > "$OUT/info.txt" || failed+=("info")
 
 if [ $render_images -eq 1 ]; then
   rm -rf "$OUT/images"
@@ -128,7 +145,7 @@ if [ $render_images -eq 1 ]; then
     name=${entry%%|*}
     read -r -a render_args <<< "${entry#*|}"
     say "render $name ($RENDER_RESOLUTION)"
-    "$OITBENCH" render "${render_args[@]}" --resolution "$RENDER_RESOLUTION" --out "$OUT/images/$name.png"
+    "$OITBENCH" render "${render_args[@]}" --driver "$driver" --resolution "$RENDER_RESOLUTION" --out "$OUT/images/$name.png"
     rc=$?
     [ $rc -eq 130 ] && { say "interrupted during render $name"; exit 130; }
     [ $rc -eq 0 ] || failed+=("render $name (exit $rc)")
