@@ -79,3 +79,104 @@ TEST(Presets, ParsesAndReportsWhereItIsWrong) {
 }
 
 }  // namespace oitbench
+
+namespace oitbench {
+
+// Every shipped preset names real experiments and parameters, and every --set in it applies to at
+// least one of its cases (a scoped parameter no case uses is a usage error: a preset must not carry one).
+TEST(Presets, EveryShippedPresetIsAValidRequestWithScopedParameters) {
+  Registry registry;
+  register_all_experiments(registry);
+  auto presets = list_presets(default_preset_dir());
+  ASSERT_GE(presets.size(), 10u);
+  for (const auto& p : presets) {
+    SCOPED_TRACE(p.name);
+    EXPECT_NO_THROW(check_requests(registry, p.runs));
+    EXPECT_NO_THROW(check_requests(registry, p.runs, true));
+  }
+}
+
+TEST(Presets, AScopedSetThatNoCaseUsesIsRejected) {
+  Registry registry;
+  register_all_experiments(registry);
+  try {
+    check_requests(registry, {{"oit", {{"technique", {"BASE-IS"}}, {"nodes", {"4"}}}, {}, {}, {}}});
+    FAIL() << "nodes with only BASE-IS must be a usage error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("applies only where technique in {MLAB"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(
+      check_requests(registry, {{"oit", {{"technique", {"BASE-IS", "MLAB"}}, {"nodes", {"4"}}}, {}, {}, {}}}));
+}
+
+TEST(ParamGrid, ScopedParametersDoNotMultiplyTheCasesTheyDoNotApplyTo) {
+  Registry registry;
+  register_all_experiments(registry);
+  const Experiment* oit = registry.find("oit");
+  ASSERT_NE(oit, nullptr);
+  auto cases = expand_grid(
+      registry.params_of(*oit),
+      {{"technique", {"BASE-IS", "MLAB"}}, {"nodes", {"4", "8"}}, {"scene", {"planes"}}, {"view", {"fwd"}}}, false);
+  ASSERT_EQ(cases.size(), 3u);  // BASE-IS once, MLAB with 4 and 8
+  EXPECT_FALSE(cases[0].uses("nodes"));
+  EXPECT_EQ(cases[0].get("nodes"), "8");  // runs at its default, recorded empty
+  EXPECT_TRUE(cases[1].uses("nodes"));
+  EXPECT_FALSE(cases[1].uses("max_frags"));
+}
+
+TEST(ParamGrid, AGridBeyondTheBoundIsRefusedBeforeItIsBuilt) {
+  std::vector<ParamSpec> specs;
+  std::vector<std::string> values;
+  for (int i = 0; i < 1000; ++i) values.push_back(std::to_string(i));
+  for (const char* n : {"a", "b"}) {
+    ParamSpec s;
+    s.name = n;
+    s.defaults = values;
+    specs.push_back(s);
+  }
+  EXPECT_THROW(expand_grid(specs, {}, false), UsageError);
+}
+
+// A metric named like a parameter, or one that disagrees with another experiment's of the same name,
+// fails at registration, not in a CSV.
+namespace {
+class ClashingExperiment final : public Experiment {
+ public:
+  explicit ClashingExperiment(std::vector<MetricSpec> m, std::string name = "clash") : m_(std::move(m)), name_(name) {}
+  std::string name() const override { return name_; }
+  std::string description() const override { return "test"; }
+  std::vector<ParamSpec> params() const override {
+    ParamSpec p;
+    p.name = "depth_param";
+    p.defaults = {"1"};
+    return {p};
+  }
+  std::vector<MetricSpec> metric_specs() const override { return m_; }
+  std::unique_ptr<CaseInstance> prepare(const ParamSet&, CaseContext&) override { return nullptr; }
+
+ private:
+  std::vector<MetricSpec> m_;
+  std::string name_;
+};
+}  // namespace
+
+TEST(Registry, AMetricWithAParametersNameFailsAtRegistration) {
+  Registry registry;
+  register_all_experiments(registry);
+  EXPECT_THROW(
+      registry.add(std::make_unique<ClashingExperiment>(std::vector<MetricSpec>{{"seed", ValueType::Integer, "", ""}})),
+      std::logic_error);
+  EXPECT_THROW(registry.add(std::make_unique<ClashingExperiment>(
+                   std::vector<MetricSpec>{{"max_frags", ValueType::Integer, "", ""}})),
+               std::logic_error);
+  EXPECT_THROW(registry.add(std::make_unique<ClashingExperiment>(
+                   std::vector<MetricSpec>{{"median_ms", ValueType::Number, "ms", ""}})),
+               std::logic_error);
+  EXPECT_THROW(
+      registry.add(std::make_unique<ClashingExperiment>(std::vector<MetricSpec>{{"rmse", ValueType::Text, "", ""}})),
+      std::logic_error);  // oit's rmse is a number
+  EXPECT_NO_THROW(
+      registry.add(std::make_unique<ClashingExperiment>(std::vector<MetricSpec>{{"rmse", ValueType::Number, "", ""}})));
+}
+
+}  // namespace oitbench
