@@ -333,7 +333,10 @@ void gen_model(Builder& b, const json& p, const Material& m, const std::string& 
 }
 
 std::string resolve_model(const SceneDesc& s, const std::string& file) {
-  std::vector<std::filesystem::path> roots = {std::filesystem::path(s.path).parent_path()};
+  // The scene's folder; models/ beside it (an install or a bundle carries the models it needs
+  // there, share/oitbench/models/); then the scene's own roots (Debian's assimp-testmodels).
+  const std::filesystem::path scene_dir = std::filesystem::path(s.path).parent_path();
+  std::vector<std::filesystem::path> roots = {scene_dir, scene_dir.parent_path() / "models"};
   if (const char* env = std::getenv("OITBENCH_MODELS")) roots.insert(roots.begin(), env);
   for (const auto& r : s.model_roots) roots.push_back(r);
   std::string tried;
