@@ -16,7 +16,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 "$cmake" --install "$build" --prefix "$P" >"$T/install.log"
 for f in bin/oitbench share/oitbench/shaders/common/oitbench.glsl share/oitbench/scenes/planes.json \
          share/oitbench/presets/default.json share/oitbench/scripts/oitcsv.py share/oitbench/scripts/tables.py \
-         share/oitbench/scripts/report.py share/oitbench/scripts/schema.json share/oitbench/scripts/test.sh \
+         share/oitbench/scripts/report.py share/oitbench/scripts/schema.json share/oitbench/scripts/bundle.sh \
          share/oitbench/results/published/README.md share/doc/oitbench/README.md share/doc/oitbench/docs/usage.md; do
   [ -e "$P/$f" ] || fail "cmake --install did not install $f"
 done
