@@ -14,6 +14,7 @@ PACKAGES=(
   libgtest-dev googletest                             # tests
   python3 python3-matplotlib                          # figures, tables, comparisons
   chromium                                            # the report page is tested in headless chromium
+  patchelf                                            # scripts/bundle.sh: the bundled binary's rpath
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

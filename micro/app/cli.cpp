@@ -9,6 +9,7 @@
 #include "backends/drivers.hpp"
 #include "core/csv.hpp"
 #include "core/presets.hpp"
+#include "core/provenance.hpp"
 #include "core/runner.hpp"
 #include "experiments/experiments.hpp"
 #include "viewer/viewer.hpp"
@@ -18,6 +19,13 @@ namespace oitbench {
 using namespace app;
 
 namespace {
+
+// `oitbench --version` and `oitbench version`: the version, then the build options.
+std::string version_text() {
+  std::string s = std::string("oitbench ") + version_string() + "\n" + build_options();
+  while (!s.empty() && s.back() == '\n') s.pop_back();
+  return s;
+}
 
 constexpr const char* kExitCodes =
     "Exit codes: 0 done (rows may still be invalid: see the status column), 1 errors or timeouts,\n"
@@ -40,6 +48,7 @@ int run_cli(int argc, char** argv) {
       "driver), validates every case against a CPU reference and writes tidy CSV."};
   app.footer(std::string("Examples:\n"
                          "  oitbench list\n"
+                         "  oitbench --version\n"
                          "  oitbench info --backend egl-device\n"
                          "  oitbench run occupancy --quick --out results/occ.csv\n"
                          "  oitbench run occupancy --set variant=unrolled --set size=32,33\n"
@@ -48,6 +57,8 @@ int run_cli(int argc, char** argv) {
                          "  oitbench view --scene hairball --technique BMA-IS\n\n") +
              kExitCodes);
   app.require_subcommand(1);
+  app.set_version_flag("--version", version_text(),
+                       "Print the version (git describe of the source tree at build time) and the build options");
 
   auto* list = app.add_subcommand("list", "List the experiments with their parameters (or the presets)");
   ListOptions lopt;
@@ -115,8 +126,11 @@ int run_cli(int argc, char** argv) {
   run->add_option("--timeout", ropt.timeout_s, "Watchdog: seconds a case may take before it is killed (status timeout)")
       ->check(CLI::PositiveNumber);
   run->add_flag("--no-progress", no_progress, "No progress line on stderr");
-  run->add_option("--shaders", ropt.shader_root, "Shader directory (default: the source tree's shaders/)");
-  run->add_option("--presets-dir", rc.preset_dir, "Preset directory (default: the source tree's presets/)");
+  run->add_option(
+      "--shaders", ropt.shader_root,
+      "Shader directory (default: shaders/ found from the binary, else the source tree's; see: oitbench info)");
+  run->add_option("--presets-dir", rc.preset_dir,
+                  "Preset directory (default: presets/ found from the binary, else the source tree's)");
   run->add_option("--preset-name", ropt.preset_name, "Recorded in the preset column")->group("");
   run->add_flag("--isolated-child", ropt.isolated_child, "Set by the parent for an isolated case")->group("");
 
@@ -164,6 +178,8 @@ int run_cli(int argc, char** argv) {
                "\n\nExit codes: 0 done, 1 a case could not be built or a view/screenshot not saved, 2 usage error,\n"
                "3 no display or no GL context (run under xvfb-run -a).");
 
+  auto* version = app.add_subcommand("version", "Print the version and the build options (like --version)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -172,6 +188,10 @@ int run_cli(int argc, char** argv) {
   }
 
   try {
+    if (*version) {
+      std::printf("%s\n", version_text().c_str());
+      return 0;
+    }
     if (*list) return list_command(registry, lopt);
     if (*info && info_drivers) return drivers_command(copt);
     try {

@@ -7,6 +7,8 @@
 
 #include "app/commands.hpp"
 #include "backends/drivers.hpp"
+#include "core/data_dirs.hpp"
+#include "core/provenance.hpp"
 
 namespace oitbench::app {
 
@@ -17,6 +19,11 @@ int info_command(const ContextOptions& copt) {
   std::printf("(osmesa: absent, not found at build time)");
 #endif
   std::printf("\n");
+  std::printf("oitbench:       %s\n", version_string());
+  for (const char* kind : {"shaders", "scenes", "presets"}) {
+    auto found = find_data_dir(kind);
+    std::printf("%-15s %s (%s)\n", (std::string(kind) + ":").c_str(), found.path.c_str(), found.from.c_str());
+  }
   if (copt.backend == "egl-device") {
     auto devices = list_egl_devices();
     std::printf("EGL devices: %zu\n", devices.size());

@@ -12,4 +12,11 @@ namespace oitbench {
 // Throws std::invalid_argument for another kind.
 std::string data_dir(const std::string& kind);
 
+// The same lookup, saying which rule found it: `from` is "$OITBENCH_SHADERS" (the variable's name),
+// "walking up from the binary" or "the source tree" (the fallback, whether or not it exists).
+struct DataDirLookup {
+  std::string path, from;
+};
+DataDirLookup find_data_dir(const std::string& kind);
+
 }  // namespace oitbench

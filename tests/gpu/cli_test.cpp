@@ -4,6 +4,8 @@
 
 #include <fstream>
 
+#include "core/data_dirs.hpp"
+#include "core/provenance.hpp"
 #include "core/runner.hpp"
 #include "support/test_support.hpp"
 
@@ -128,6 +130,33 @@ TEST(Cli, HelpExplainsAndExitsZero) {
   EXPECT_EQ(l.exit_code, 0);
   EXPECT_TRUE(contains(l.out, "occupancy")) << l.out;
   EXPECT_TRUE(contains(l.out, "allowed: dynamic|unrolled")) << l.out;
+}
+
+TEST(Cli, VersionPrintsTheVersionAndTheBuildOptions) {
+  for (const auto& args : {std::vector<std::string>{"--version"}, std::vector<std::string>{"version"}}) {
+    auto r = run_oitbench(args);
+    EXPECT_EQ(r.exit_code, 0) << args[0] << ": " << r.err;
+    EXPECT_EQ(r.out.substr(0, r.out.find('\n')), std::string("oitbench ") + version_string()) << r.out;
+    for (const char* line :
+         {"\nbuild type:  ", "\ncompiler:    ", "\nosmesa:      ", "\nglfw:        ", "\nsanitizers:  "})
+      EXPECT_TRUE(contains(r.out, line)) << args[0] << " lacks " << line << ": " << r.out;
+  }
+  // The version names the commit the rows' git_sha does.
+  EXPECT_TRUE(contains(version_string(), std::string(git_sha()))) << version_string() << " vs " << git_sha();
+  auto h = run_oitbench({"--help"});
+  EXPECT_EQ(h.exit_code, 0);
+  EXPECT_TRUE(contains(h.out, "--version")) << h.out;
+  EXPECT_TRUE(contains(h.out, "  version ")) << h.out;
+}
+
+TEST(Cli, InfoNamesTheDataFoldersInUse) {
+  auto r = run_oitbench({"info"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "oitbench:       " + std::string(version_string()) + "\n")) << r.out;
+  for (const char* kind : {"shaders", "scenes", "presets"}) {
+    auto found = find_data_dir(kind);
+    EXPECT_TRUE(contains(r.out, found.path + " (" + found.from + ")\n")) << kind << ": " << r.out;
+  }
 }
 
 TEST(Cli, AppendingOntoADifferentHeaderIsRefused) {
