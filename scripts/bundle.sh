@@ -64,6 +64,21 @@ dest=$stage/$name
 cmake --install "$build" --prefix "$dest" >/dev/null
 objcopy --strip-debug "$dest/bin/oitbench"
 mkdir -p "$dest/lib" "$dest/share/doc/oitbench/licenses"
+# The models the shipped scenes load (engine-grid, house) from Debian's assimp-testmodels, into
+# share/oitbench/models/, which the scene loader searches beside scenes/: a GPU machine rarely has them.
+models_copied=0
+while IFS= read -r file; do
+  for root in /usr/share/assimp/models; do
+    if [ -f "$root/$file" ]; then
+      mkdir -p "$dest/share/oitbench/models/$(dirname "$file")"
+      cp "$root/$file" "$dest/share/oitbench/models/$file"
+      models_copied=$((models_copied + 1))
+    fi
+  done
+done < <(sed -n 's/.*"file": *"\([^"]*\)".*/\1/p' scenes/*.json | sort -u)
+if [ $models_copied -gt 0 ] && [ -r /usr/share/doc/assimp-testmodels/copyright ]; then
+  cp -L /usr/share/doc/assimp-testmodels/copyright "$dest/share/doc/oitbench/licenses/assimp-testmodels.copyright"
+fi
 
 ldd_out=$(env -u LD_LIBRARY_PATH -u LD_PRELOAD ldd "$exe")
 if grep -q "not found" <<<"$ldd_out"; then
@@ -131,8 +146,8 @@ which names it ("error while loading shared libraries: libNAME.so.N: cannot open
 
 ${osmesa_note}The shaders, scenes and presets are in share/oitbench/ and are found from the binary, from any working
 directory (oitbench info names the folders in use; OITBENCH_SHADERS, OITBENCH_SCENES and
-OITBENCH_PRESETS override them). The scenes engine-grid and house load models from Debian's
-assimp-testmodels (/usr/share/assimp/models); elsewhere copy those files and set OITBENCH_MODELS.
+OITBENCH_PRESETS override them). The models the scenes engine-grid and house load (from Debian's
+assimp-testmodels) are in share/oitbench/models/, found beside scenes/; OITBENCH_MODELS overrides.
 The scripts (plot, tables, compare, report; Python 3, matplotlib for figures) are in
 share/oitbench/scripts/, the papers' numbers in share/oitbench/results/published/, the manual in
 share/doc/oitbench/ (docs/usage.md, "Install and bundle").
