@@ -75,7 +75,7 @@ while IFS= read -r file; do
       models_copied=$((models_copied + 1))
     fi
   done
-done < <(sed -n 's/.*"file": *"\([^"]*\)".*/\1/p' scenes/*.json | sort -u)
+done < <(sed -n 's/.*"file": *"\([^"]*\)".*/\1/p' "$root"/scenes/*.json | sort -u)
 if [ $models_copied -gt 0 ] && [ -r /usr/share/doc/assimp-testmodels/copyright ]; then
   cp -L /usr/share/doc/assimp-testmodels/copyright "$dest/share/doc/oitbench/licenses/assimp-testmodels.copyright"
 fi
