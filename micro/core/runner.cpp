@@ -83,6 +83,7 @@ class Runner {
       return unsupported_driver(requests, e);
     }
     gl_ = GlInfo::query();
+    gl_info_known_ = true;
     shaders_ = std::make_unique<ShaderLibrary>(opt_.shader_root);
     if (opt_.program_cache && gl_.has_extension("GL_ARB_get_program_binary"))
       shaders_->enable_program_cache(default_program_cache_dir(), gl_.vendor + "|" + gl_.renderer + "|" + gl_.version);
@@ -151,13 +152,11 @@ class Runner {
     for (const auto& r : requests) {
       Experiment* e = registry_.find(r.experiment);
       const bool quick = opt_.quick || r.quick;
-      Resolution res = opt_.resolution ? *opt_.resolution
-                       : r.resolution  ? *r.resolution
-                       : quick         ? e->quick_resolution()
-                                       : e->default_resolution();
-      int reps = opt_.reps_given ? opt_.reps : r.reps.value_or(quick ? std::min(opt_.reps, 3) : opt_.reps);
-      int warmup = opt_.warmup_given ? opt_.warmup : r.warmup.value_or(opt_.warmup);
-      plan.push_back({e, res, reps, warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
+      // Known only now that the context exists; without one (an unsupported driver) the entry's own sizes.
+      const bool hardware = gl_info_known_ && !gl_.is_software_renderer();
+      RunSize size = resolve_run_size(r, *e, opt_, hardware);
+      plan.push_back(
+          {e, size.resolution, size.reps, size.warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
     }
     return plan;
   }
@@ -402,6 +401,7 @@ class Runner {
   GlInfo gl_;
   std::unique_ptr<ShaderLibrary> shaders_;
   bool use_gpu_timer_ = false, sync_passes_ = true;
+  bool gl_info_known_ = false;
   std::unique_ptr<CsvWriter> writer_, raw_writer_;
   Row run_columns_;
   std::map<Status, int> counts_;
@@ -412,6 +412,22 @@ class Runner {
 };
 
 }  // namespace
+
+RunSize resolve_run_size(const RunRequest& r, const Experiment& e, const RunOptions& opt, bool hardware_driver) {
+  const bool quick = opt.quick || r.quick;
+  const HardwareSizes hw = hardware_driver && r.hardware ? *r.hardware : HardwareSizes{};
+  RunSize s;
+  s.hardware_sizes =
+      (!opt.resolution && hw.resolution) || (!opt.reps_given && hw.reps) || (!opt.warmup_given && hw.warmup);
+  s.resolution = opt.resolution  ? *opt.resolution
+                 : hw.resolution ? *hw.resolution
+                 : r.resolution  ? *r.resolution
+                 : quick         ? e.quick_resolution()
+                                 : e.default_resolution();
+  s.reps = opt.reps_given ? opt.reps : hw.reps ? *hw.reps : r.reps.value_or(quick ? std::min(opt.reps, 3) : opt.reps);
+  s.warmup = opt.warmup_given ? opt.warmup : hw.warmup ? *hw.warmup : r.warmup.value_or(opt.warmup);
+  return s;
+}
 
 void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick) {
   if (requests.empty()) throw UsageError("nothing to run; experiments: " + registry.names());
