@@ -13,6 +13,7 @@
 #include "backends/drivers.hpp"
 #include "core/csv.hpp"
 #include "core/data_dirs.hpp"
+#include "core/gpu_state.hpp"
 #include "core/isolation.hpp"
 #include "core/progress.hpp"
 #include "core/rows.hpp"
@@ -84,6 +85,7 @@ class Runner {
     }
     gl_ = GlInfo::query();
     gl_info_known_ = true;
+    gpu_ = GpuMonitor::for_gl_context(gl_.vendor, gl_.renderer);
     shaders_ = std::make_unique<ShaderLibrary>(opt_.shader_root);
     if (opt_.program_cache && gl_.has_extension("GL_ARB_get_program_binary"))
       shaders_->enable_program_cache(default_program_cache_dir(), gl_.vendor + "|" + gl_.renderer + "|" + gl_.version);
@@ -100,6 +102,7 @@ class Runner {
                     {"gl_vendor", gl_.vendor},
                     {"gl_renderer", gl_.renderer},
                     {"gl_version", gl_.version},
+                    {"gpu_driver_version", gpu_.driver_version()},
                     {"git_sha", git_sha()},
                     {"hostname", host_name()},
                     {"cpu_model", cpu_model()},
@@ -239,6 +242,7 @@ class Runner {
       prepare(exp, p.res, live[i]);
     }
     PassTimer timer(gl_.has_timer_query(), sync_passes_);  // queries recorded always; primary only where trusted
+    const GpuReading gpu_start = gpu_.read();              // the clocks around the timed work (empty without NVML)
     // Warm-up, then timed repetitions, interleaved across the group: A B C A B C ...
     for (int r = -p.warmup; r < p.reps && !signals_.stopped(); ++r) {
       for (auto& c : live) {
@@ -269,6 +273,10 @@ class Runner {
       progress_->report(exp.name(), cases_done_, live.size(), r + p.warmup + 1, p.reps + p.warmup);
     }
     if (signals_.stopped()) return;  // unfinished cases write nothing; finished rows are on disk
+    const GpuReading gpu_end = gpu_.read();
+    RowSettings summary = settings;
+    for (const auto& [k, v] : gpu_state_columns(gpu_start, gpu_end)) summary.run[k] = v;
+    const std::string clock_note = clock_change_note(gpu_start, gpu_end);
     for (auto& c : live) {
       auto& rec = c.record;
       if (c.instance) {
@@ -286,7 +294,9 @@ class Runner {
           }
         }
       }
-      finish_case(settings, rec);
+      // The cases that ran while the clocks moved say so (those that never ran have nothing to qualify).
+      if (!clock_note.empty() && (rec.status == Status::Ok || rec.status == Status::Invalid)) rec.add_note(clock_note);
+      finish_case(summary, rec);
       c.instance.reset();
     }
   }
@@ -399,6 +409,7 @@ class Runner {
   SignalGuard signals_;
   std::unique_ptr<Context> ctx_;
   GlInfo gl_;
+  GpuMonitor gpu_;  // NVML where the GL driver is NVIDIA's; inactive elsewhere
   std::unique_ptr<ShaderLibrary> shaders_;
   bool use_gpu_timer_ = false, sync_passes_ = true;
   bool gl_info_known_ = false;
