@@ -1,6 +1,7 @@
 // Beyond one driver, on the embedded default (a software renderer): presets' hardware sizes stay unused here
-// and list --presets says so; the GPU state columns are empty without NVML and filled through a fake NVML
-// (tests/support/fake_nvml.cpp).
+// and list --presets says so; the occupancy experiment's measured occupancy is empty with its reason and its
+// measuring variant builds only with GL_NV_shader_thread_group; the GPU state columns are empty without NVML
+// and filled through a fake NVML (tests/support/fake_nvml.cpp).
 #include <cstdlib>
 #include <fstream>
 
@@ -99,6 +100,71 @@ TEST(HardwarePresets, ThePaperPresetsCarryThePapersSizesForHardware) {
   EXPECT_FALSE(contains(r.out, "(broken:")) << r.out;
 }
 
+class MeasuredOccupancy : public GlTest {};
+
+TEST_F(MeasuredOccupancy, WithoutTheExtensionTheColumnIsEmptyWithItsReason) {
+  if (gl().has_extension("GL_NV_shader_thread_group")) GTEST_SKIP() << "this driver can measure";
+  auto v = run_case("occupancy", {{"variant", "unrolled"}, {"size", "8"}, {"draws", "1"}});
+  EXPECT_TRUE(v.valid) << v.reason;
+  EXPECT_EQ(v.metrics.count("measured_occupancy"), 0u);
+  EXPECT_EQ(v.metrics.at("measured_occupancy_note"),
+            "not measured: the driver does not offer GL_NV_shader_thread_group");
+}
+
+TEST_F(MeasuredOccupancy, TheMeasuringVariantBuildsOnlyWithTheExtension) {
+  const std::vector<ShaderStage> stages = {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                           {GL_FRAGMENT_SHADER, "occupancy/occupancy.frag"}};
+  for (const char* variant : {"VARIANT_DYNAMIC", "VARIANT_UNROLLED"}) {
+    Defines defines = {{"SIZE", "4"}, {variant, ""}};
+    EXPECT_NO_THROW(shaders().build(stages, defines)) << variant;
+    defines.emplace_back("OCCUPANCY_MEASURE", "");
+    if (gl().has_extension("GL_NV_shader_thread_group")) {
+      EXPECT_NO_THROW(shaders().build(stages, defines)) << variant;
+    } else {
+      try {
+        shaders().build(stages, defines);
+        ADD_FAILURE() << variant << ": the measuring variant compiled without GL_NV_shader_thread_group";
+      } catch (const ShaderError& e) {
+        EXPECT_TRUE(contains(e.what(), "GL_NV_shader_thread_group")) << e.what();
+      }
+    }
+  }
+}
+
+// No driver here has the extension; this compiles the measuring variant with its built-ins declared as the
+// spec declares them (uniform uint gl_WarpsPerSMNV, gl_SMCountNV; in uint gl_WarpIDNV, gl_SMIDNV,
+// gl_ThreadInWarpNV; uint ballotThreadNV(bool)), under other names, so the rest of the GLSL is checked.
+TEST_F(MeasuredOccupancy, TheMeasuringVariantTypeChecksAgainstTheExtensionsDeclarations) {
+  for (const char* variant : {"VARIANT_DYNAMIC", "VARIANT_UNROLLED"}) {
+    auto text =
+        shaders().assemble("occupancy/occupancy.frag", {{"SIZE", "16"}, {variant, ""}, {"OCCUPANCY_MEASURE", ""}}).text;
+    const std::string ext = "#extension GL_NV_shader_thread_group : require\n";
+    auto at = text.find(ext);
+    ASSERT_NE(at, std::string::npos) << "the extension is required inside OCCUPANCY_MEASURE";
+    text.replace(at, ext.size(),
+                 "uniform uint mock_WarpsPerSMNV;\nuniform uint mock_SMCountNV;\nflat in uint mock_WarpIDNV;\n"
+                 "flat in uint mock_SMIDNV;\nflat in uint mock_ThreadInWarpNV;\n"
+                 "uint mock_ballotThreadNV(bool value) { return value ? 1u : 0u; }\n");
+    for (const char* name :
+         {"gl_WarpsPerSMNV", "gl_SMCountNV", "gl_WarpIDNV", "gl_SMIDNV", "gl_ThreadInWarpNV", "ballotThreadNV"}) {
+      const std::string from = name, to = "mock_" + from.substr(from.rfind('_') == 2 ? 3 : 0);
+      for (size_t p = text.find(from); p != std::string::npos; p = text.find(from, p + to.size()))
+        if (p < 5 || text.compare(p - 5, 5, "mock_") != 0) text.replace(p, from.size(), to);
+    }
+    GLuint shader = glCreateShader(GL_FRAGMENT_SHADER);
+    const char* src = text.c_str();
+    glShaderSource(shader, 1, &src, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    char log[4096] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    EXPECT_TRUE(ok) << variant << ":\n" << log;
+    EXPECT_TRUE(contains(text, "mock_ballotThreadNV(!gl_HelperInvocation)")) << text;
+  }
+}
+
 TEST(GpuStateColumns, WithoutNvmlTheyAreEmptyAndNothingFails) {
   auto out = temp_dir("nonvml") / "occ.csv";
   auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "size=4", "--out", out.string(), "--no-progress"});
@@ -108,13 +174,15 @@ TEST(GpuStateColumns, WithoutNvmlTheyAreEmptyAndNothingFails) {
   for (auto& row : rows) {
     EXPECT_EQ(row["status"], "ok") << row["reason"];
     EXPECT_EQ(row["schema"], std::to_string(kCsvSchema));
-    for (const char* col :
-         {"gpu_driver_version", "gpu_sm_clock_start_mhz", "gpu_sm_clock_end_mhz", "gpu_mem_clock_start_mhz",
-          "gpu_mem_clock_end_mhz", "gpu_temp_start_c", "gpu_temp_end_c", "gpu_power_start_w", "gpu_power_end_w"}) {
+    for (const char* col : {"gpu_driver_version", "gpu_sm_clock_start_mhz", "gpu_sm_clock_end_mhz",
+                            "gpu_mem_clock_start_mhz", "gpu_mem_clock_end_mhz", "gpu_temp_start_c", "gpu_temp_end_c",
+                            "gpu_power_start_w", "gpu_power_end_w", "measured_occupancy"}) {
       ASSERT_TRUE(row.count(col)) << "no column " << col;
       EXPECT_EQ(row[col], "") << col;
     }
     EXPECT_FALSE(contains(row["reason"], "gpu clocks")) << row["reason"];
+    EXPECT_TRUE(contains(row["measured_occupancy_note"], "GL_NV_shader_thread_group"))
+        << row["measured_occupancy_note"];
   }
   auto info = run_oitbench({"info"});
   ASSERT_EQ(info.exit_code, 0) << info.err;

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "experiments/experiments.hpp"
+#include "experiments/occupancy.hpp"
 
 namespace oitbench {
 
@@ -140,6 +141,48 @@ TEST(OccupancyModel, OtherGpusUseTheirOwnCapsGranulesAndPartitions) {
   EXPECT_EQ(p.threads_per_sm, 192);
   // Never below one warp.
   EXPECT_EQ(predict_occupancy(budget("rx6900xt"), 1024, true).threads_per_sm, 32);
+}
+
+}  // namespace oitbench
+
+namespace oitbench {
+
+TEST(MeasuredOccupancy, CountsTheDistinctWarpSlotsOfTheBusiestSm) {
+  // 3 SMs of 64 warp slots (2 words each): SM 0 saw slots 0-27, SM 1 slots 0-13 and 32-45, SM 2 nothing;
+  // 5 warps reported ids out of range.
+  std::vector<unsigned> slots(1 + 3 * 2, 0u);
+  slots[0] = 5;
+  slots[1] = (1u << 28) - 1;
+  slots[3] = (1u << 14) - 1;
+  slots[4] = (1u << 14) - 1;
+  auto m = count_warp_slots(slots, 3, 64);
+  EXPECT_EQ(m.max_slots, 28);
+  EXPECT_EQ(m.sms_with_warps, 2);
+  EXPECT_DOUBLE_EQ(m.mean_slots, 28.0);
+  EXPECT_DOUBLE_EQ(m.occupancy, 0.4375);
+  EXPECT_EQ(m.note(),
+            "warp slots seen in one untimed pass: at most 28 of 64 on an SM (mean 28.0 over 2 SMs); 5 warp(s) gave "
+            "an SM or warp id out of range");
+  // Every slot of a 48-warp SM (Ada): full.
+  std::vector<unsigned> full = {0u, ~0u, (1u << 16) - 1};
+  EXPECT_DOUBLE_EQ(count_warp_slots(full, 1, 48).occupancy, 1.0);
+  // Nothing marked, or a buffer that does not match the counts: nothing measured.
+  EXPECT_EQ(count_warp_slots(std::vector<unsigned>(7, 0u), 3, 64).sms_with_warps, 0);
+  EXPECT_EQ(count_warp_slots(std::vector<unsigned>(7, 0u), 3, 64).note(),
+            "no warp marked a slot (the measuring draw produced no fragments?)");
+  EXPECT_EQ(count_warp_slots(slots, 4, 64).sms_with_warps, 0);
+  EXPECT_EQ(count_warp_slots(slots, 3, 0).sms_with_warps, 0);
+}
+
+TEST(MeasuredOccupancy, TheVariantIsBuiltOnlyWhereTheExtensionIs) {
+  GlInfo llvmpipe;
+  llvmpipe.renderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  EXPECT_EQ(occupancy_measure_unavailable(llvmpipe),
+            "not measured: the driver does not offer GL_NV_shader_thread_group");
+  GlInfo nvidia;
+  nvidia.renderer = "NVIDIA H200/PCIe/SSE2";
+  nvidia.extensions.insert("GL_NV_shader_thread_group");
+  EXPECT_EQ(occupancy_measure_unavailable(nvidia), "");
 }
 
 }  // namespace oitbench
