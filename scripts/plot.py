@@ -260,14 +260,24 @@ def plot_occupancy(data):
 
     occ = [(oitcsv.to_float(r.get("size")), oitcsv.to_float(r.get("predicted_occupancy")))
            for r in rows if oitcsv.to_float(r.get("predicted_occupancy")) is not None]
-    if occ:
+    # Measured where the driver could (GL_NV_shader_thread_group): one marker per variant and size.
+    measured = sorted({(r.get("variant", ""), oitcsv.to_float(r.get("size")),
+                        oitcsv.to_float(r.get("measured_occupancy")))
+                       for r in rows if oitcsv.to_float(r.get("measured_occupancy")) is not None})
+    if occ or measured:
         occ = sorted(set(occ))
         ax2 = ax.twinx()
-        ax2.step([s for s, _ in occ], [o for _, o in occ], where="post", color="grey", linestyle="--",
-                 label="predicted occupancy")
-        ax2.set_ylabel("predicted occupancy (model, %s)" % next(
-            (r.get("model_gpu_used") for r in rows if r.get("model_gpu_used")), "?"))
-        ax2.set_ylim(0, max(1.05, max(o for _, o in occ) * 1.05))
+        if occ:
+            ax2.step([s for s, _ in occ], [o for _, o in occ], where="post", color="grey", linestyle="--",
+                     label="predicted occupancy")
+        for i, variant in enumerate(sorted({v for v, _, _ in measured})):
+            pts = [(s, m) for v, s, m in measured if v == variant]
+            ax2.plot([s for s, _ in pts], [m for _, m in pts], "s^o"[i % 3], color="black", fillstyle="none",
+                     linestyle="none", label=f"measured occupancy ({variant})" if variant else "measured occupancy")
+        label = "predicted occupancy (model, %s)" % next(
+            (r.get("model_gpu_used") for r in rows if r.get("model_gpu_used")), "?") if occ else "occupancy"
+        ax2.set_ylabel(label + (", measured" if measured and occ else " (measured)" if measured else ""))
+        ax2.set_ylim(0, max(1.05, max(o for _, o in occ + [(0, m) for _, _, m in measured]) * 1.05))
         # One legend, drawn on the top axes so the occupancy line does not run through it.
         h1, l1 = ax.get_legend_handles_labels()
         h2, l2 = ax2.get_legend_handles_labels()

@@ -66,6 +66,7 @@ int run_cli(int argc, char** argv) {
   list->add_flag("--presets", lopt.presets, "List the presets (named grids in presets/*.json)");
   list->add_option("--schema", lopt.schema,
                    "Print the CSV schema (columns with role, type, unit and meaning; statuses) as FORMAT: json");
+  list->add_option("--presets-dir", lopt.preset_dir, "Preset directory (default: the source tree's presets/)");
 
   ContextOptions copt;
   std::string driver = "default";
@@ -79,6 +80,7 @@ int run_cli(int argc, char** argv) {
                     "GL driver: default (what the loader gives), llvmpipe, zink (GL on Vulkan on lavapipe), softpipe, "
                     "egl-device-N; see: oitbench info --drivers");
   };
+  add_backend(list);  // list --presets creates a context to say which size applies here
   auto* info = app.add_subcommand("info", "Show the context: backend, vendor, renderer, limits, extensions");
   add_backend(info);
   bool info_drivers = false;
@@ -192,13 +194,15 @@ int run_cli(int argc, char** argv) {
       std::printf("%s\n", version_text().c_str());
       return 0;
     }
-    if (*list) return list_command(registry, lopt);
     if (*info && info_drivers) return drivers_command(copt);
-    try {
-      apply_driver(find_driver(driver), copt);
-    } catch (const BackendError& e) {
-      throw UsageError(e.what());
+    if (!*list || lopt.presets) {  // list --presets creates a context too
+      try {
+        apply_driver(find_driver(driver), copt);
+      } catch (const BackendError& e) {
+        throw UsageError(e.what());
+      }
     }
+    if (*list) return list_command(registry, lopt, copt);
     if (*info) return info_command(copt);
     if (*view) return viewer::run_viewer(registry, v_opt);
     ropt.context = copt;

@@ -13,7 +13,8 @@ struct ListOptions {
   std::string schema;  // "json": print the result schema instead
   std::string preset_dir;
 };
-int list_command(const Registry& registry, const ListOptions& o);
+// `list --presets` creates a context with `context` to say which of each entry's sizes applies here.
+int list_command(const Registry& registry, const ListOptions& o, const ContextOptions& context);
 
 int info_command(const ContextOptions& o);
 // info --drivers: every driver of backends/drivers.hpp and EGL device, tried in a child process each.

@@ -1,6 +1,7 @@
 // oitbench info: the context this machine gives, what the driver can do, its limits.
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -8,6 +9,7 @@
 #include "app/commands.hpp"
 #include "backends/drivers.hpp"
 #include "core/data_dirs.hpp"
+#include "core/gpu_state.hpp"
 #include "core/provenance.hpp"
 
 namespace oitbench::app {
@@ -52,6 +54,17 @@ int info_command(const ContextOptions& copt) {
        {"GL_ARB_shader_clock", "GL_ARB_shader_ballot", "GL_ARB_gpu_shader_int64", "GL_NV_shader_atomic_int64",
         "GL_ARB_bindless_texture", "GL_KHR_debug", "GL_ARB_get_program_binary", "GL_ARB_pipeline_statistics_query"})
     std::printf("%-34s %s\n", e, yes(gl.has_extension(e)));
+  if (auto gpu = GpuMonitor::for_gl_context(gl.vendor, gl.renderer); gpu.active()) {
+    auto r = gpu.read();
+    auto num = [](const auto& v, const char* unit) {
+      return v ? std::to_string(static_cast<long long>(std::llround(static_cast<double>(*v)))) + unit : "?";
+    };
+    std::printf("GPU state (NVML): %s, driver %s, SM %s, memory %s, %s, %s\n", gpu.device_name().c_str(),
+                gpu.driver_version().c_str(), num(r.sm_clock_mhz, " MHz").c_str(), num(r.mem_clock_mhz, " MHz").c_str(),
+                num(r.temperature_c, " C").c_str(), num(r.power_w, " W").c_str());
+  } else {
+    std::printf("GPU state (NVML): none (%s)\n", gpu.why_inactive().c_str());
+  }
   for (const auto& [k, v] : gl.limits) std::printf("%-40s %lld\n", k.c_str(), v);
   std::printf("extensions: %zu\n", gl.extensions.size());
   return 0;

@@ -7,23 +7,73 @@
 
 namespace oitbench::app {
 
-int list_command(const Registry& registry, const ListOptions& o) {
+namespace {
+
+std::string size_text(const RunSize& s) {
+  return std::to_string(s.resolution.width) + "x" + std::to_string(s.resolution.height) + ", " +
+         std::to_string(s.reps) + (s.reps == 1 ? " rep, " : " reps, ") + std::to_string(s.warmup) + " warm-up";
+}
+
+// Which of a preset entry's sizes applies on this machine: a context tells whether the renderer is a
+// software one (resolve_run_size); none may be available (no driver, no display), and then nobody knows.
+enum class Here { Software, Hardware, Unknown };
+
+Here describe_here(const ContextOptions& context) {
+  try {
+    auto ctx = create_context(context);
+    auto gl = GlInfo::query();
+    const bool software = gl.is_software_renderer();
+    std::printf("Sizes here: %s renderer %s (%s): %s\n", software ? "software" : "hardware", gl.renderer.c_str(),
+                ctx->backend().c_str(),
+                software ? "every entry runs at its own size"
+                         : "entries with a \"hardware\" size run at it, the others at their own");
+    return software ? Here::Software : Here::Hardware;
+  } catch (const ContextUnsupported& e) {
+    std::printf("Sizes here: %s: cases would be unsupported here, rows would carry each entry's own size\n", e.what());
+    return Here::Software;
+  } catch (const std::exception& e) {
+    std::printf("Sizes here: unknown: no GL context could be created (%s)\n", e.what());
+    return Here::Unknown;
+  }
+}
+
+void list_presets_command(const Registry& registry, const std::string& preset_dir, const ContextOptions& context) {
+  std::printf(
+      "Presets in %s (run with: oitbench run --preset NAME; --resolution, --reps and --warmup win over "
+      "the sizes below):\n",
+      preset_dir.c_str());
+  const Here here = describe_here(context);
+  const RunOptions defaults;  // no --resolution, --reps or --warmup
+  for (const auto& p : list_presets(preset_dir)) {
+    std::printf("  %-18s %s\n", p.name.c_str(), p.description.c_str());
+    for (const auto& r : p.runs) {
+      std::printf("      %s", r.experiment.c_str());
+      for (const auto& [k, v] : r.overrides) std::printf(" %s=%zu value(s)", k.c_str(), v.size());
+      std::printf("\n");
+      const Experiment* e = registry.find(r.experiment);
+      if (!e) {
+        std::printf("        (no experiment '%s' in this build)\n", r.experiment.c_str());
+        continue;
+      }
+      auto mark = [&](Here which) { return here == which ? "   <- applies here" : ""; };
+      std::printf("        software renderer: %s%s\n", size_text(resolve_run_size(r, *e, defaults, false)).c_str(),
+                  mark(Here::Software));
+      std::printf("        hardware:          %s%s%s\n", size_text(resolve_run_size(r, *e, defaults, true)).c_str(),
+                  r.hardware ? "" : " (no \"hardware\" entry: the same)", mark(Here::Hardware));
+    }
+  }
+}
+
+}  // namespace
+
+int list_command(const Registry& registry, const ListOptions& o, const ContextOptions& context) {
   if (!o.schema.empty()) {
     if (o.schema != "json") throw UsageError("list --schema: unknown format '" + o.schema + "'; valid: json");
     std::fputs(schema_json(registry).c_str(), stdout);
     return 0;
   }
-  const std::string& preset_dir = o.preset_dir;
   if (o.presets) {
-    std::printf("Presets in %s (run with: oitbench run --preset NAME):\n", preset_dir.c_str());
-    for (const auto& p : list_presets(preset_dir)) {
-      std::printf("  %-18s %s\n", p.name.c_str(), p.description.c_str());
-      for (const auto& r : p.runs) {
-        std::printf("      %s", r.experiment.c_str());
-        for (const auto& [k, v] : r.overrides) std::printf(" %s=%zu value(s)", k.c_str(), v.size());
-        std::printf("\n");
-      }
-    }
+    list_presets_command(registry, o.preset_dir, context);
     return 0;
   }
   std::printf("Experiments (run with: oitbench run NAME [--set PARAM=V1,V2,...]):\n\n");

@@ -1,5 +1,6 @@
 #include "core/presets.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -13,7 +14,25 @@ namespace oitbench {
 
 namespace {
 
-std::string to_value(const nlohmann::json& v, const std::string& where) {
+// Where a preset is wrong: FILE:LINE:COLUMN: runs[2].hardware.reps: what was expected.
+class PresetText {
+ public:
+  PresetText(const std::string& path, const std::string& text) : path_(path), text_(text) {}
+  UsageError error(const std::vector<std::string>& keys, const std::string& what) const {
+    std::string where;
+    for (const auto& k : keys)
+      where +=
+          !k.empty() && std::all_of(k.begin(), k.end(), ::isdigit) ? "[" + k + "]" : (where.empty() ? "" : ".") + k;
+    return UsageError(path_ + ":" + line_column(text_, json_path_offset(text_, keys)) + ": " +
+                      (where.empty() ? "" : where + ": ") + what);
+  }
+
+ private:
+  const std::string& path_;
+  const std::string& text_;
+};
+
+std::string to_value(const nlohmann::json& v, const PresetText& at, const std::vector<std::string>& keys) {
   if (v.is_string()) return v.get<std::string>();
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
   if (v.is_number()) {
@@ -22,8 +41,49 @@ std::string to_value(const nlohmann::json& v, const std::string& where) {
     return s.str();
   }
   if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
-  throw UsageError(where + ": expected a string or a number, got " + std::string(v.type_name()));
+  throw at.error(keys, "expected a string or a number, got " + std::string(v.type_name()));
 }
+
+Resolution resolution_value(const nlohmann::json& v, const PresetText& at, const std::vector<std::string>& keys) {
+  if (!v.is_string()) throw at.error(keys, "expected \"WIDTHxHEIGHT\", got " + std::string(v.type_name()));
+  try {
+    return parse_resolution(v.get<std::string>());
+  } catch (const UsageError& e) {
+    throw at.error(keys, e.what());
+  }
+}
+
+int count_value(const nlohmann::json& v, const PresetText& at, const std::vector<std::string>& keys, int min) {
+  if (!v.is_number_integer() || v.get<long long>() < min || v.get<long long>() > 100000)
+    throw at.error(keys, std::string("expected a ") + (min > 0 ? "positive" : "non-negative") +
+                             " integer (at most 100000), got " +
+                             (v.is_string() ? "\"" + v.get<std::string>() + "\"" : v.dump()));
+  return v.get<int>();
+}
+
+// "hardware": {"resolution": "1920x1080", "reps": 10, "warmup": 2}: the sizes for hardware drivers.
+HardwareSizes hardware_sizes(const nlohmann::json& v, const PresetText& at, std::vector<std::string> keys) {
+  if (!v.is_object() || v.empty())
+    throw at.error(keys,
+                   "expected an object with one or more of resolution, reps, warmup (the sizes on hardware "
+                   "drivers), got " +
+                       (v.is_object() ? std::string("{}") : std::string(v.type_name())));
+  HardwareSizes h;
+  for (const auto& [k, x] : v.items()) {
+    keys.push_back(k);
+    if (k == "resolution")
+      h.resolution = resolution_value(x, at, keys);
+    else if (k == "reps")
+      h.reps = count_value(x, at, keys, 1);
+    else if (k == "warmup")
+      h.warmup = count_value(x, at, keys, 0);
+    else
+      throw at.error(keys, "unknown key \"" + k + "\"; expected resolution, reps, warmup");
+    keys.pop_back();
+  }
+  return h;
+}
+
 }  // namespace
 
 Resolution parse_resolution(const std::string& text) {
@@ -46,45 +106,55 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
   } catch (const nlohmann::json::parse_error& e) {
     throw UsageError(path + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + e.what());
   }
-  // nlohmann does not keep positions of values: name the JSON path of what is wrong instead.
+  const PresetText at(path, text);
   Preset p{name, "", path, {}};
-  if (!j.is_object()) throw UsageError(path + ": expected a JSON object at the top level");
-  if (j.contains("description")) p.description = j["description"].get<std::string>();
+  if (!j.is_object()) throw at.error({}, "expected a JSON object at the top level");
+  if (j.contains("description")) {
+    if (!j["description"].is_string()) throw at.error({"description"}, "expected a string");
+    p.description = j["description"].get<std::string>();
+  }
+  for (const auto& [k, v] : j.items())
+    if (k != "description" && k != "runs") throw at.error({k}, "unknown key \"" + k + "\"; expected description, runs");
   if (!j.contains("runs") || !j["runs"].is_array() || j["runs"].empty())
-    throw UsageError(path + ": expected \"runs\": a non-empty array of {\"experiment\": ..., \"set\": {...}}");
+    throw at.error({"runs"}, "expected \"runs\": a non-empty array of {\"experiment\": ..., \"set\": {...}}");
   for (size_t i = 0; i < j["runs"].size(); ++i) {
     const auto& r = j["runs"][i];
-    std::string where = path + ": runs[" + std::to_string(i) + "]";
+    const std::vector<std::string> entry = {"runs", std::to_string(i)};
+    auto in = [&](std::initializer_list<std::string> more) {
+      auto keys = entry;
+      keys.insert(keys.end(), more);
+      return keys;
+    };
     if (!r.is_object() || !r.contains("experiment") || !r["experiment"].is_string())
-      throw UsageError(where + ": expected an object with \"experiment\": \"NAME\"");
+      throw at.error(entry, "expected an object with \"experiment\": \"NAME\"");
     RunRequest req;
     req.experiment = r["experiment"].get<std::string>();
     for (const auto& [k, v] : r.items()) {
       if (k == "experiment") continue;
       if (k == "set") {
-        if (!v.is_object()) throw UsageError(where + ".set: expected an object of parameter lists");
+        if (!v.is_object()) throw at.error(in({"set"}), "expected an object of parameter lists");
         for (const auto& [pk, pv] : v.items()) {
           auto& list = req.overrides[pk];
           if (pv.is_array()) {
-            for (const auto& x : pv) list.push_back(to_value(x, where + ".set." + pk));
+            for (size_t n = 0; n < pv.size(); ++n)
+              list.push_back(to_value(pv[n], at, in({"set", pk, std::to_string(n)})));
           } else {
-            list.push_back(to_value(pv, where + ".set." + pk));
+            list.push_back(to_value(pv, at, in({"set", pk})));
           }
-          if (list.empty()) throw UsageError(where + ".set." + pk + ": empty value list");
+          if (list.empty()) throw at.error(in({"set", pk}), "empty value list");
         }
       } else if (k == "resolution") {
-        req.resolution = parse_resolution(to_value(v, where + ".resolution"));
+        req.resolution = resolution_value(v, at, in({k}));
       } else if (k == "reps" || k == "warmup") {
-        if (!v.is_number_integer() || v.get<int>() < (k == "reps" ? 1 : 0))
-          throw UsageError(where + "." + k + ": expected a " + (k == "reps" ? "positive" : "non-negative") +
-                           " integer");
-        (k == "reps" ? req.reps : req.warmup) = v.get<int>();
+        (k == "reps" ? req.reps : req.warmup) = count_value(v, at, in({k}), k == "reps" ? 1 : 0);
       } else if (k == "quick") {
-        if (!v.is_boolean()) throw UsageError(where + ".quick: expected true or false");
+        if (!v.is_boolean()) throw at.error(in({k}), "expected true or false");
         req.quick = v.get<bool>();
+      } else if (k == "hardware") {
+        req.hardware = hardware_sizes(v, at, in({k}));
       } else {
-        throw UsageError(where + ": unknown key \"" + k +
-                         "\"; expected experiment, set, resolution, reps, warmup, quick");
+        throw at.error(
+            in({k}), "unknown key \"" + k + "\"; expected experiment, set, resolution, reps, warmup, quick, hardware");
       }
     }
     p.runs.push_back(std::move(req));

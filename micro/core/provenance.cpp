@@ -38,7 +38,7 @@ std::string recorded_env() {
       "LP_NATIVE_VECTOR_WIDTH",      "GALLIUM_DRIVER",        "LIBGL_ALWAYS_SOFTWARE",
       "MESA_SHADER_CACHE_DISABLE",   "MESA_SHADER_CACHE_DIR", "MESA_GL_VERSION_OVERRIDE",
       "MESA_LOADER_DRIVER_OVERRIDE", "EGL_PLATFORM",          "__GL_THREADED_OPTIMIZATIONS",
-      "__GL_SHADER_DISK_CACHE",      "OITBENCH_SHADERS"};
+      "__GL_SHADER_DISK_CACHE",      "OITBENCH_SHADERS",      "OITBENCH_NVML_LIBRARY"};
   std::string s;
   for (const char* n : names)
     if (const char* v = std::getenv(n)) s += (s.empty() ? "" : ";") + std::string(n) + "=" + v;

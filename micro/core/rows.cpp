@@ -22,6 +22,11 @@ void CaseRecord::fail(Status s, const std::string& why) {
   reason = why;
 }
 
+void CaseRecord::add_note(const std::string& text) {
+  std::string& r = status == Status::Ok ? note : reason;
+  r += (r.empty() ? "" : "; ") + text;
+}
+
 double CaseRecord::add_repetition(const std::vector<PassSample>& samples, double total_ms) {
   double gpu_total = samples.empty() ? -1 : 0;
   for (const auto& s : samples) {

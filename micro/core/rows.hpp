@@ -30,6 +30,8 @@ struct CaseRecord {
   std::string note;                                     // the validation's note on an ok case
 
   void fail(Status s, const std::string& why);  // the first failure is the one kept
+  // Appends to what the rows' reason will say: the note of an ok case, the reason of another.
+  void add_note(const std::string& text);
   // Records one timed repetition; returns the sum of its GPU pass times (< 0 when one is missing).
   double add_repetition(const std::vector<PassSample>& samples, double total_ms);
 };

@@ -13,6 +13,7 @@
 #include "backends/drivers.hpp"
 #include "core/csv.hpp"
 #include "core/data_dirs.hpp"
+#include "core/gpu_state.hpp"
 #include "core/isolation.hpp"
 #include "core/progress.hpp"
 #include "core/rows.hpp"
@@ -83,6 +84,8 @@ class Runner {
       return unsupported_driver(requests, e);
     }
     gl_ = GlInfo::query();
+    gl_info_known_ = true;
+    gpu_ = GpuMonitor::for_gl_context(gl_.vendor, gl_.renderer);
     shaders_ = std::make_unique<ShaderLibrary>(opt_.shader_root);
     if (opt_.program_cache && gl_.has_extension("GL_ARB_get_program_binary"))
       shaders_->enable_program_cache(default_program_cache_dir(), gl_.vendor + "|" + gl_.renderer + "|" + gl_.version);
@@ -99,6 +102,7 @@ class Runner {
                     {"gl_vendor", gl_.vendor},
                     {"gl_renderer", gl_.renderer},
                     {"gl_version", gl_.version},
+                    {"gpu_driver_version", gpu_.driver_version()},
                     {"git_sha", git_sha()},
                     {"hostname", host_name()},
                     {"cpu_model", cpu_model()},
@@ -151,13 +155,11 @@ class Runner {
     for (const auto& r : requests) {
       Experiment* e = registry_.find(r.experiment);
       const bool quick = opt_.quick || r.quick;
-      Resolution res = opt_.resolution ? *opt_.resolution
-                       : r.resolution  ? *r.resolution
-                       : quick         ? e->quick_resolution()
-                                       : e->default_resolution();
-      int reps = opt_.reps_given ? opt_.reps : r.reps.value_or(quick ? std::min(opt_.reps, 3) : opt_.reps);
-      int warmup = opt_.warmup_given ? opt_.warmup : r.warmup.value_or(opt_.warmup);
-      plan.push_back({e, res, reps, warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
+      // Known only now that the context exists; without one (an unsupported driver) the entry's own sizes.
+      const bool hardware = gl_info_known_ && !gl_.is_software_renderer();
+      RunSize size = resolve_run_size(r, *e, opt_, hardware);
+      plan.push_back(
+          {e, size.resolution, size.reps, size.warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
     }
     return plan;
   }
@@ -240,6 +242,7 @@ class Runner {
       prepare(exp, p.res, live[i]);
     }
     PassTimer timer(gl_.has_timer_query(), sync_passes_);  // queries recorded always; primary only where trusted
+    const GpuReading gpu_start = gpu_.read();              // the clocks around the timed work (empty without NVML)
     // Warm-up, then timed repetitions, interleaved across the group: A B C A B C ...
     for (int r = -p.warmup; r < p.reps && !signals_.stopped(); ++r) {
       for (auto& c : live) {
@@ -270,6 +273,10 @@ class Runner {
       progress_->report(exp.name(), cases_done_, live.size(), r + p.warmup + 1, p.reps + p.warmup);
     }
     if (signals_.stopped()) return;  // unfinished cases write nothing; finished rows are on disk
+    const GpuReading gpu_end = gpu_.read();
+    RowSettings summary = settings;
+    for (const auto& [k, v] : gpu_state_columns(gpu_start, gpu_end)) summary.run[k] = v;
+    const std::string clock_note = clock_change_note(gpu_start, gpu_end);
     for (auto& c : live) {
       auto& rec = c.record;
       if (c.instance) {
@@ -287,7 +294,9 @@ class Runner {
           }
         }
       }
-      finish_case(settings, rec);
+      // The cases that ran while the clocks moved say so (those that never ran have nothing to qualify).
+      if (!clock_note.empty() && (rec.status == Status::Ok || rec.status == Status::Invalid)) rec.add_note(clock_note);
+      finish_case(summary, rec);
       c.instance.reset();
     }
   }
@@ -400,8 +409,10 @@ class Runner {
   SignalGuard signals_;
   std::unique_ptr<Context> ctx_;
   GlInfo gl_;
+  GpuMonitor gpu_;  // NVML where the GL driver is NVIDIA's; inactive elsewhere
   std::unique_ptr<ShaderLibrary> shaders_;
   bool use_gpu_timer_ = false, sync_passes_ = true;
+  bool gl_info_known_ = false;
   std::unique_ptr<CsvWriter> writer_, raw_writer_;
   Row run_columns_;
   std::map<Status, int> counts_;
@@ -412,6 +423,22 @@ class Runner {
 };
 
 }  // namespace
+
+RunSize resolve_run_size(const RunRequest& r, const Experiment& e, const RunOptions& opt, bool hardware_driver) {
+  const bool quick = opt.quick || r.quick;
+  const HardwareSizes hw = hardware_driver && r.hardware ? *r.hardware : HardwareSizes{};
+  RunSize s;
+  s.hardware_sizes =
+      (!opt.resolution && hw.resolution) || (!opt.reps_given && hw.reps) || (!opt.warmup_given && hw.warmup);
+  s.resolution = opt.resolution  ? *opt.resolution
+                 : hw.resolution ? *hw.resolution
+                 : r.resolution  ? *r.resolution
+                 : quick         ? e.quick_resolution()
+                                 : e.default_resolution();
+  s.reps = opt.reps_given ? opt.reps : hw.reps ? *hw.reps : r.reps.value_or(quick ? std::min(opt.reps, 3) : opt.reps);
+  s.warmup = opt.warmup_given ? opt.warmup : hw.warmup ? *hw.warmup : r.warmup.value_or(opt.warmup);
+  return s;
+}
 
 void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick) {
   if (requests.empty()) throw UsageError("nothing to run; experiments: " + registry.names());

@@ -13,6 +13,13 @@
 
 namespace oitbench {
 
+// A preset entry's sizes for hardware drivers ("hardware": {...}): each one given replaces the entry's own
+// where the renderer is not a software one (GlInfo::is_software_renderer()).
+struct HardwareSizes {
+  std::optional<Resolution> resolution;
+  std::optional<int> reps, warmup;
+};
+
 // One experiment to run, from the command line or from one entry of a preset.
 struct RunRequest {
   std::string experiment;
@@ -20,6 +27,7 @@ struct RunRequest {
   std::optional<Resolution> resolution;
   std::optional<int> reps, warmup;
   bool quick = false;  // this request uses the experiment's --quick grid and resolution
+  std::optional<HardwareSizes> hardware{};
 };
 
 struct RunOptions {
@@ -42,6 +50,16 @@ struct RunOptions {
   bool isolated_child = false;  // this process runs one case for a parent: no summary line
   std::string image_stem;       // render: where a case writes its images (CaseContext::image_stem)
 };
+
+// The size a request runs at: the command line's --resolution/--reps/--warmup first; then, on a hardware
+// driver, the request's `hardware` sizes; then the request's own; then the experiment's (--quick) defaults.
+struct RunSize {
+  Resolution resolution;
+  int reps = 0, warmup = 0;
+  bool hardware_sizes = false;  // a value of the request's `hardware` entry was used
+};
+RunSize resolve_run_size(const RunRequest& request, const Experiment& experiment, const RunOptions& options,
+                         bool hardware_driver);
 
 // Validates the requests against the registry and their grids (throws UsageError listing the valid
 // names); `quick`: every request uses its experiment's --quick grid.

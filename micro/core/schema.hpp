@@ -12,8 +12,9 @@ namespace oitbench {
 class Registry;
 
 // 2: parameters scoped to the cases they apply to (others empty), max_frags_used, sort_source,
-// the output path `dump` no longer a parameter.
-inline constexpr int kCsvSchema = 2;
+// the output path `dump` no longer a parameter. 3: the GPU state columns (gpu_driver_version,
+// gpu_*_start/end), occupancy's measured_occupancy and measured_occupancy_note.
+inline constexpr int kCsvSchema = 3;
 
 enum class Status { Ok, Invalid, Unsupported, Error, Timeout };
 inline constexpr Status kAllStatuses[] = {Status::Ok, Status::Invalid, Status::Unsupported, Status::Error,

@@ -2,6 +2,7 @@
 // "LINE:COLUMN" (both from 1) of a byte offset in a text: how data-file errors name their place.
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace oitbench {
 
@@ -17,5 +18,10 @@ inline std::string line_column(const std::string& text, size_t byte) {
   }
   return std::to_string(line) + ":" + std::to_string(col);
 }
+
+// nlohmann keeps no positions of values: the byte offset in a JSON text (already parsed, so well formed) of
+// the entry at `path` (object keys as written, array indices as decimal numbers): an object member's key,
+// an array element's first character. Where the path leaves the text, the deepest part found.
+size_t json_path_offset(const std::string& text, const std::vector<std::string>& path);
 
 }  // namespace oitbench

@@ -1,6 +1,12 @@
 // occupancy: local array size vs time (Knowles, Leach, Zambetta 2013, figure 3).
-// A full-screen pass whose fragment shader holds `vec4 myArray[SIZE]`, drawn `draws` times.
+// A full-screen pass whose fragment shader holds `vec4 myArray[SIZE]`, drawn `draws` times. Where the driver
+// offers GL_NV_shader_thread_group, validation also measures the warps resident per SM in one untimed pass.
+#include "experiments/occupancy.hpp"
+
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -32,6 +38,52 @@ Element element(int x, int y, int i) {
            static_cast<float>((x ^ i) & 63)}};
 }
 
+// GL_NV_shader_thread_group's queries (the extension's enums; the generated loader does not carry them).
+constexpr GLenum kWarpsPerSmNV = 0x933A, kSmCountNV = 0x933B;
+constexpr const char* kThreadGroupExtension = "GL_NV_shader_thread_group";
+
+}  // namespace
+
+std::string occupancy_measure_unavailable(const GlInfo& gl) {
+  if (gl.has_extension(kThreadGroupExtension)) return "";
+  return std::string("not measured: the driver does not offer ") + kThreadGroupExtension;
+}
+
+OccupancyMeasurement count_warp_slots(const std::vector<unsigned>& slots, int sm_count, int warps_per_sm) {
+  OccupancyMeasurement m;
+  m.warps_per_sm = warps_per_sm;
+  const size_t words = (static_cast<size_t>(warps_per_sm) + 31) / 32;
+  if (sm_count <= 0 || warps_per_sm <= 0 || slots.size() < 1 + words * static_cast<size_t>(sm_count)) return m;
+  m.out_of_range = slots[0];
+  long total = 0;
+  for (int sm = 0; sm < sm_count; ++sm) {
+    int seen = 0;
+    for (size_t w = 0; w < words; ++w) seen += std::popcount(slots[1 + sm * words + w]);
+    if (seen == 0) continue;
+    ++m.sms_with_warps;
+    total += seen;
+    m.max_slots = std::max(m.max_slots, seen);
+  }
+  if (m.sms_with_warps > 0) {
+    m.mean_slots = static_cast<double>(total) / m.sms_with_warps;
+    m.occupancy = static_cast<double>(m.max_slots) / warps_per_sm;
+  }
+  return m;
+}
+
+std::string OccupancyMeasurement::note() const {
+  if (sms_with_warps == 0) return "no warp marked a slot (the measuring draw produced no fragments?)";
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "warp slots seen in one untimed pass: at most %d of %d on an SM (mean %.1f over %d SMs)", max_slots,
+                warps_per_sm, mean_slots, sms_with_warps);
+  std::string s = buf;
+  if (out_of_range > 0) s += "; " + std::to_string(out_of_range) + " warp(s) gave an SM or warp id out of range";
+  return s;
+}
+
+namespace {
+
 class OccupancyCase final : public CaseInstance {
  public:
   OccupancyCase(const ParamSet& p, CaseContext& ctx)
@@ -39,10 +91,24 @@ class OccupancyCase final : public CaseInstance {
         draws_(static_cast<int>(p.get_int("draws"))),
         dynamic_(p.get("variant") == "dynamic"),
         target_(ctx.width(), ctx.height()) {
-    program_ =
-        ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "occupancy/occupancy.frag"}},
-                  {{"SIZE", std::to_string(size_)}, {dynamic_ ? "VARIANT_DYNAMIC" : "VARIANT_UNROLLED", ""}});
+    const std::vector<ShaderStage> stages = {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                             {GL_FRAGMENT_SHADER, "occupancy/occupancy.frag"}};
+    Defines defines = {{"SIZE", std::to_string(size_)}, {dynamic_ ? "VARIANT_DYNAMIC" : "VARIANT_UNROLLED", ""}};
+    program_ = ctx.build(stages, defines);
     glProgramUniform1i(program_.get(), glGetUniformLocation(program_.get(), "zero"), 0);
+    // The measuring variant exists only where the extension does; a driver that refuses it leaves the
+    // timed case alone and says why in measured_occupancy_note.
+    measure_note_ = occupancy_measure_unavailable(ctx.gl());
+    if (measure_note_.empty()) {
+      defines.emplace_back("OCCUPANCY_MEASURE", "");
+      try {
+        measure_program_ = ctx.build(stages, defines);
+        glProgramUniform1i(measure_program_.get(), glGetUniformLocation(measure_program_.get(), "zero"), 0);
+      } catch (const ShaderError& e) {
+        std::string what = e.what();
+        measure_note_ = "not measured: the OCCUPANCY_MEASURE shader did not build: " + what.substr(0, what.find('\n'));
+      }
+    }
     if (auto budget = find_budget(p.get("model_gpu"), ctx.gl().renderer)) {
       auto pred = predict_occupancy(*budget, size_, dynamic_);
       metrics_["model_gpu_used"] = budget->key;
@@ -89,17 +155,56 @@ class OccupancyCase final : public CaseInstance {
     v.valid = bad == 0;
     v.metrics["mismatched_pixels"] = std::to_string(bad);
     if (!v.valid) v.reason = std::to_string(bad) + " pixel(s) differ from the CPU reference; first: " + first;
+    measure(v.metrics);  // after the read-back: the timed repetitions and their image are untouched
     return v;
   }
 
   std::map<std::string, std::string> metrics() const override { return metrics_; }
 
  private:
+  // One untimed pass of `draws` draws with the measuring variant: which warp slots each SM used.
+  void measure(std::map<std::string, std::string>& out) {
+    if (!measure_program_) {
+      out["measured_occupancy_note"] = measure_note_;
+      return;
+    }
+    GLint sm_count = 0, warps_per_sm = 0;
+    glGetIntegerv(kSmCountNV, &sm_count);
+    glGetIntegerv(kWarpsPerSmNV, &warps_per_sm);
+    if (sm_count <= 0 || warps_per_sm <= 0) {
+      out["measured_occupancy_note"] = "not measured: the driver reports " + std::to_string(sm_count) + " SMs and " +
+                                       std::to_string(warps_per_sm) + " warps per SM";
+      return;
+    }
+    const size_t words = (static_cast<size_t>(warps_per_sm) + 31) / 32;
+    std::vector<unsigned> slots(1 + words * static_cast<size_t>(sm_count), 0u);
+    auto buffer = gl::make_buffer();
+    const auto bytes = static_cast<GLsizeiptr>(slots.size() * sizeof(unsigned));
+    glNamedBufferData(buffer.get(), bytes, slots.data(), GL_DYNAMIC_READ);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.get());
+    target_.bind();
+    glUseProgram(measure_program_.get());
+    for (int i = 0; i < draws_; ++i) quad_.draw();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(buffer.get(), 0, bytes, slots.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    if (GLenum err = glGetError(); err != GL_NO_ERROR) {
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "0x%04x", err);
+      out["measured_occupancy_note"] = std::string("not measured: GL error ") + hex + " in the measuring pass";
+      return;
+    }
+    auto m = count_warp_slots(slots, sm_count, warps_per_sm);
+    if (m.sms_with_warps > 0) out["measured_occupancy"] = std::to_string(m.occupancy);
+    out["measured_occupancy_note"] = m.note();
+  }
+
   int size_, draws_;
   bool dynamic_;
   RenderTarget target_;
   FullscreenTriangle quad_;
-  gl::Program program_;
+  gl::Program program_, measure_program_;
+  std::string measure_note_;  // why measure_program_ is empty
   std::map<std::string, std::string> metrics_;
 };
 
@@ -141,6 +246,12 @@ class OccupancyExperiment final : public Experiment {
              "the analytic model (model_gpu)"},
             {"predicted_threads_per_sm", ValueType::Integer, "", "resident threads per SM the model predicts"},
             {"model_gpu_used", ValueType::Text, "", "the GPU whose budgets the model used, or unknown"},
+            {"measured_occupancy", ValueType::Number, "",
+             "distinct warp slots seen on the busiest SM over gl_WarpsPerSMNV, from one untimed pass of the "
+             "measuring variant at validation (GL_NV_shader_thread_group); empty where not measured"},
+            {"measured_occupancy_note", ValueType::Text, "",
+             "how measured_occupancy was measured (slots, SMs), or why it is empty (e.g. the driver lacks "
+             "GL_NV_shader_thread_group)"},
             {"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"}};
   }
   Resolution default_resolution() const override { return {800, 600}; }

@@ -27,6 +27,17 @@ class PlotSynthetic(TempDirTest):
             self.assertGreater(os.path.getsize(os.path.join(out, f"{exp}.svg")), 1000)
             self.assertIn(f"{exp}:", proc.stdout)
 
+    def test_measured_occupancy_is_drawn_beside_the_model(self):
+        rows = [dict(r, measured_occupancy="0.4375") for r in syn.occupancy_rows()]
+        path = syn.write_summary(self.path("m.csv"), rows, syn.OCCUPANCY_METRICS + ["measured_occupancy"],
+                                 syn.OCCUPANCY_PARAMS)
+        run_script("plot.py", path, "-o", self.path("mfig"))
+        with open(self.path("mfig/occupancy.svg"), encoding="utf-8") as f:
+            svg = f.read()
+        self.assertIn("measured occupancy (dynamic)", svg)
+        self.assertIn("measured occupancy (unrolled)", svg)
+        self.assertIn("predicted occupancy", svg)
+
     def test_invalid_rows_are_listed_not_plotted(self):
         proc = run_script("plot.py", self.write_all(), "-o", self.path("fig"))
         self.assertIn("occupancy: not plotted: unrolled size=128", proc.stdout)

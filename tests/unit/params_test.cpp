@@ -78,6 +78,125 @@ TEST(Presets, ParsesAndReportsWhereItIsWrong) {
   EXPECT_THROW(parse_resolution("800by600"), UsageError);
 }
 
+namespace {
+// The message of the UsageError parse_preset throws for `text`, or "" when it parses.
+std::string preset_error(const std::string& text) {
+  try {
+    parse_preset("t", "t.json", text);
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "";
+}
+std::string entry_with(const std::string& hardware) {
+  return "{\"runs\": [{\"experiment\": \"occupancy\", \"hardware\": " + hardware + "}]}";
+}
+}  // namespace
+
+TEST(Presets, AnEntryMayCarryItsSizesForHardwareDrivers) {
+  auto p = parse_preset("t", "t.json", R"({"runs": [
+      {"experiment": "occupancy", "resolution": "128x96", "reps": 2,
+       "hardware": {"resolution": "1920x1080", "reps": 10, "warmup": 2}},
+      {"experiment": "occupancy", "hardware": {"reps": 20}},
+      {"experiment": "occupancy"}]})");
+  ASSERT_EQ(p.runs.size(), 3u);
+  ASSERT_TRUE(p.runs[0].hardware.has_value());
+  EXPECT_EQ(p.runs[0].hardware->resolution->width, 1920);
+  EXPECT_EQ(p.runs[0].hardware->resolution->height, 1080);
+  EXPECT_EQ(*p.runs[0].hardware->reps, 10);
+  EXPECT_EQ(*p.runs[0].hardware->warmup, 2);
+  EXPECT_EQ(p.runs[0].resolution->width, 128);  // the software size stays the entry's own
+  EXPECT_FALSE(p.runs[1].hardware->resolution.has_value());
+  EXPECT_EQ(*p.runs[1].hardware->reps, 20);
+  EXPECT_FALSE(p.runs[2].hardware.has_value());
+}
+
+TEST(Presets, MalformedHardwareSizesNameFileLineColumnAndEntry) {
+  // The place: runs[1]'s "reps" inside "hardware", line 5 column 44.
+  EXPECT_EQ(preset_error("{\n"
+                         "  \"runs\": [\n"
+                         "    {\"experiment\": \"occupancy\", \"hardware\": {\"reps\": 3}},\n"
+                         "    {\"experiment\": \"occupancy\",\n"
+                         "     \"hardware\": {\"resolution\": \"800x600\", \"reps\": \"ten\"}}\n"
+                         "  ]\n"
+                         "}\n"),
+            "t.json:5:44: runs[1].hardware.reps: expected a positive integer (at most 100000), got \"ten\"");
+  EXPECT_EQ(preset_error(entry_with(R"({"reps": 0})")),
+            "t.json:1:52: runs[0].hardware.reps: expected a positive integer (at most 100000), got 0");
+  EXPECT_EQ(preset_error(entry_with(R"({"warmup": -1})")),
+            "t.json:1:52: runs[0].hardware.warmup: expected a non-negative integer (at most 100000), got -1");
+  EXPECT_EQ(preset_error(entry_with(R"({"resolution": "1920by1080"})")),
+            "t.json:1:52: runs[0].hardware.resolution: resolution '1920by1080': expected WIDTHxHEIGHT, e.g. 800x600");
+  EXPECT_EQ(preset_error(entry_with(R"({"resolution": 1920})")),
+            "t.json:1:52: runs[0].hardware.resolution: expected \"WIDTHxHEIGHT\", got number");
+  EXPECT_EQ(preset_error(entry_with(R"({"resolution": "0x1080"})")),
+            "t.json:1:52: runs[0].hardware.resolution: resolution '0x1080': each side must be in [1, 16384]");
+  EXPECT_EQ(preset_error(entry_with(R"({"size": "1920x1080"})")),
+            "t.json:1:52: runs[0].hardware.size: unknown key \"size\"; expected resolution, reps, warmup");
+  EXPECT_EQ(preset_error(entry_with(R"("1920x1080")")),
+            "t.json:1:39: runs[0].hardware: expected an object with one or more of resolution, reps, warmup (the "
+            "sizes on hardware drivers), got string");
+  EXPECT_EQ(preset_error(entry_with("{}")),
+            "t.json:1:39: runs[0].hardware: expected an object with one or more of resolution, reps, warmup (the "
+            "sizes on hardware drivers), got {}");
+  // The entry's own keys are placed the same way now.
+  EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "sett": {}}]})"),
+            "t.json:1:39: runs[0].sett: unknown key \"sett\"; expected experiment, set, resolution, reps, warmup, "
+            "quick, hardware");
+  EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "reps": 1.5}]})"),
+            "t.json:1:39: runs[0].reps: expected a positive integer (at most 100000), got 1.5");
+  EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "set": {"size": [1, {}]}}]})"),
+            "t.json:1:59: runs[0].set.size[1]: expected a string or a number, got object");
+  EXPECT_EQ(preset_error(R"({"runs": [], "x": 1})"), "t.json:1:14: x: unknown key \"x\"; expected description, runs");
+}
+
+TEST(Presets, HardwareSizesApplyOnlyOnHardwareDriversAndTheCommandLineWins) {
+  Registry registry;
+  register_all_experiments(registry);
+  const Experiment& occ = *registry.find("occupancy");  // 800x600, --quick 200x150
+  RunRequest r{"occupancy", {}, Resolution{128, 96}, 2, 1};
+  r.hardware = HardwareSizes{Resolution{1920, 1080}, 10, 2};
+  const RunOptions none;
+  auto sw = resolve_run_size(r, occ, none, false);
+  EXPECT_EQ(sw.resolution.width, 128);
+  EXPECT_EQ(sw.reps, 2);
+  EXPECT_EQ(sw.warmup, 1);
+  EXPECT_FALSE(sw.hardware_sizes);
+  auto hw = resolve_run_size(r, occ, none, true);
+  EXPECT_EQ(hw.resolution.width, 1920);
+  EXPECT_EQ(hw.resolution.height, 1080);
+  EXPECT_EQ(hw.reps, 10);
+  EXPECT_EQ(hw.warmup, 2);
+  EXPECT_TRUE(hw.hardware_sizes);
+  // --resolution and --reps win; the warm-up not given keeps the hardware one.
+  RunOptions cli;
+  cli.resolution = Resolution{64, 48};
+  cli.reps = 3;
+  cli.reps_given = true;
+  auto won = resolve_run_size(r, occ, cli, true);
+  EXPECT_EQ(won.resolution.width, 64);
+  EXPECT_EQ(won.reps, 3);
+  EXPECT_EQ(won.warmup, 2);
+  EXPECT_TRUE(won.hardware_sizes);
+  cli.warmup = 0;
+  cli.warmup_given = true;
+  EXPECT_FALSE(resolve_run_size(r, occ, cli, true).hardware_sizes);
+  // A partial hardware entry replaces what it names and keeps the entry's own for the rest.
+  r.hardware = HardwareSizes{std::nullopt, 20, std::nullopt};
+  hw = resolve_run_size(r, occ, none, true);
+  EXPECT_EQ(hw.resolution.width, 128);
+  EXPECT_EQ(hw.reps, 20);
+  EXPECT_EQ(hw.warmup, 1);
+  // A quick entry: the experiment's quick size and 3 repetitions here, the hardware resolution there.
+  RunRequest q{"occupancy", {}, {}, {}, {}, true, HardwareSizes{Resolution{800, 600}, {}, {}}};
+  sw = resolve_run_size(q, occ, none, false);
+  EXPECT_EQ(sw.resolution.width, 200);
+  EXPECT_EQ(sw.reps, 3);
+  hw = resolve_run_size(q, occ, none, true);
+  EXPECT_EQ(hw.resolution.width, 800);
+  EXPECT_EQ(hw.reps, 3);
+}
+
 }  // namespace oitbench
 
 namespace oitbench {
