@@ -95,20 +95,14 @@ class Runner {
     sync_passes_ = opt_.sync_passes || gl_.is_software_renderer() || !use_gpu_timer_;
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
     if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_));
-    run_columns_ = {{"schema", std::to_string(kCsvSchema)},
-                    {"backend", ctx_->backend()},
-                    {"device", ctx_->device()},
-                    {"driver", driver_slug(gl_)},
-                    {"gl_vendor", gl_.vendor},
-                    {"gl_renderer", gl_.renderer},
-                    {"gl_version", gl_.version},
-                    {"gpu_driver_version", gpu_.driver_version()},
-                    {"git_sha", git_sha()},
-                    {"hostname", host_name()},
-                    {"cpu_model", cpu_model()},
-                    {"lp_num_threads", lp_num_threads()},
-                    {"env", recorded_env()},
-                    {"preset", opt_.preset_name}};
+    run_columns_ = machine_columns();
+    run_columns_.insert({{"backend", ctx_->backend()},
+                         {"device", ctx_->device()},
+                         {"driver", driver_slug(gl_)},
+                         {"gl_vendor", gl_.vendor},
+                         {"gl_renderer", gl_.renderer},
+                         {"gl_version", gl_.version},
+                         {"gpu_driver_version", gpu_.driver_version()}});
 
     // Expand every request first so progress can say "case i of n".
     std::vector<Planned> plan = make_plan(requests);
@@ -167,16 +161,9 @@ class Runner {
   // The driver gives no GL 4.5 core context: every case is `unsupported`, with the version it offered.
   int unsupported_driver(const std::vector<RunRequest>& requests, const ContextUnsupported& e) {
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
-    run_columns_ = {{"schema", std::to_string(kCsvSchema)},
-                    {"backend", opt_.context.backend},
-                    {"driver", opt_.context.driver},
-                    {"gl_version", e.offered()},
-                    {"git_sha", git_sha()},
-                    {"hostname", host_name()},
-                    {"cpu_model", cpu_model()},
-                    {"lp_num_threads", lp_num_threads()},
-                    {"env", recorded_env()},
-                    {"preset", opt_.preset_name}};
+    run_columns_ = machine_columns();
+    run_columns_.insert(
+        {{"backend", opt_.context.backend}, {"driver", opt_.context.driver}, {"gl_version", e.offered()}});
     size_t cases = 0;
     for (const auto& p : make_plan(requests))
       for (const auto& c : p.cases) {
@@ -188,6 +175,17 @@ class Runner {
     std::fprintf(stderr, "oitbench: %s: %zu case(s) unsupported -> %s\n", e.what(), cases,
                  opt_.out == "-" ? "stdout" : opt_.out.c_str());
     return 3;
+  }
+
+  // The run's columns that do not depend on the context: schema, code, machine, environment, preset.
+  Row machine_columns() const {
+    return {{"schema", std::to_string(kCsvSchema)},
+            {"git_sha", git_sha()},
+            {"hostname", host_name()},
+            {"cpu_model", cpu_model()},
+            {"lp_num_threads", lp_num_threads()},
+            {"env", recorded_env()},
+            {"preset", opt_.preset_name}};
   }
 
   RowSettings row_settings(const Planned& p) const {
