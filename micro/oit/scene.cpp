@@ -115,7 +115,12 @@ struct Builder {
   Mesh mesh;
   std::vector<glm::vec3> centroids;               // per group
   std::vector<std::pair<size_t, size_t>> groups;  // [first index, index count)
-  void begin() { groups.push_back({mesh.indices.size(), 0}); }
+  std::vector<bool> group_opaque;                 // per group: made of an opaque material
+  bool opaque = false;                            // the material of the groups begun next
+  void begin() {
+    groups.push_back({mesh.indices.size(), 0});
+    group_opaque.push_back(opaque);
+  }
   void end(glm::vec3 centroid) {
     groups.back().second = mesh.indices.size() - groups.back().first;
     centroids.push_back(centroid);
@@ -260,7 +265,9 @@ glm::vec3 per_axis(const json& p, const char* key, float fallback) {
 // model material's diffuse colour (`colour_mix`: the model's share); its alpha is the scene
 // material's, or `alpha_by_material[model material name]`, or with `model_opacity` the model's own
 // opacity where the file gives one below 1 (the house's glass). Materials named in
-// `exclude_materials` are left out (before the bounding box is taken).
+// `exclude_materials` are left out (before the bounding box is taken). With
+// `opaque_unless_translucent`, every model material is opaque except those the file makes
+// translucent (model_opacity) or alpha_by_material names: the house's walls and its glass.
 void gen_model(Builder& b, const json& p, const Material& m, const std::string& file) {
   Assimp::Importer importer;
   const aiScene* sc = importer.ReadFile(file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
@@ -293,6 +300,7 @@ void gen_model(Builder& b, const json& p, const Material& m, const std::string& 
   glm::ivec3 grid = glm::max(glm::ivec3(per_axis(p, "grid", 1.0f)), glm::ivec3(1));
   glm::vec3 spacing = per_axis(p, "spacing", 1.0f);
   float mix = static_cast<float>(param(p, "colour_mix", 0.5));
+  const bool opaque_unless = p.value("opaque_unless_translucent", false);
   bool model_opacity = p.value("model_opacity", false);
   const json alpha_by_material = p.value("alpha_by_material", json::object());
   glm::vec3 half = 0.5f * spacing * glm::vec3(grid - 1);
@@ -305,16 +313,24 @@ void gen_model(Builder& b, const json& p, const Material& m, const std::string& 
           if (!included(mesh)) continue;
           glm::vec3 diffuse(1.0f);
           float alpha = m.alpha;
+          bool opaque = m.opaque || opaque_unless;
           if (sc->mMaterials && mesh->mMaterialIndex < sc->mNumMaterials) {
             const aiMaterial* mat = sc->mMaterials[mesh->mMaterialIndex];
             aiColor4D d;
             if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &d) == AI_SUCCESS) diffuse = glm::vec3(d.r, d.g, d.b);
             float opacity = 1.0f;
-            if (model_opacity && mat->Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && opacity < 1.0f) alpha = opacity;
+            if (model_opacity && mat->Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && opacity < 1.0f) {
+              alpha = opacity;
+              opaque = m.opaque;
+            }
             auto named = alpha_by_material.find(material_name(mesh->mMaterialIndex));
-            if (named != alpha_by_material.end()) alpha = named->get<float>();
+            if (named != alpha_by_material.end()) {
+              alpha = named->get<float>();
+              opaque = m.opaque;
+            }
           }
-          glm::vec4 c(glm::mix(m.colour, diffuse, mix), m.opaque ? 1.0f : alpha);
+          b.opaque = opaque;
+          glm::vec4 c(glm::mix(m.colour, diffuse, mix), opaque ? 1.0f : alpha);
           unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
           for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
             const aiVector3D& q = mesh->mVertices[v];
@@ -349,7 +365,71 @@ std::string resolve_model(const SceneDesc& s, const std::string& file) {
                    " (set OITBENCH_MODELS, or install Debian's assimp-testmodels)");
 }
 
+// "light" and "effects", checked against what the scene holds: each effect needs something to act on.
+void parse_light_and_effects(const Node& root, SceneDesc& s) {
+  if (root.has("light")) {
+    auto n = root.child("light");
+    n.expect_object({"eye", "target", "up", "fov", "ambient"});
+    Light l;
+    if (!n.has("eye")) n.fail("expected \"eye\": [x, y, z], where the light stands");
+    l.eye = n.child("eye").vec3();
+    if (n.has("target")) l.target = n.child("target").vec3();
+    if (n.has("up")) l.up = n.child("up").vec3();
+    if (n.has("fov")) l.fov_deg = static_cast<float>(n.child("fov").number(1, 170));
+    if (n.has("ambient")) l.ambient = static_cast<float>(n.child("ambient").number(0, 1));
+    if (glm::length(l.eye - l.target) < 1e-6f) n.fail("eye and target coincide");
+    if (glm::length(glm::cross(glm::normalize(l.target - l.eye), l.up)) < 1e-4f)
+      n.fail("\"up\" is parallel to the light's direction; give an up vector across it");
+    s.light = l;
+  }
+  if (!root.has("effects")) {
+    s.effects = {"transparency"};
+    return;
+  }
+  auto e = root.child("effects");
+  const auto& valid = effect_names();
+  std::string list;
+  for (const auto& v : valid) list += (list.empty() ? "" : ", ") + v;
+  if (!e.raw().is_array() || e.raw().empty())
+    e.fail("expected a non-empty array of effect names (" + list + "), e.g. [\"transparency\"]");
+  bool any_opaque = false, any_transparent = false;
+  for (const auto& o : s.objects) {
+    const auto& m = s.material(o.material);
+    (m.opaque ? any_opaque : any_transparent) = true;
+    // a model can hold opaque and transparent materials of its own (params "opaque_unless_translucent")
+    if (o.generator == "model" && o.params.value("opaque_unless_translucent", false))
+      any_opaque = any_transparent = true;
+  }
+  std::vector<std::string> declared;
+  for (size_t i = 0; i < e.raw().size(); ++i) {
+    auto n = e.element(i);
+    auto name = n.str();
+    if (std::find(valid.begin(), valid.end(), name) == valid.end())
+      n.fail("unknown effect \"" + name + "\"; valid effects: " + list);
+    if (std::find(declared.begin(), declared.end(), name) != declared.end())
+      n.fail("effect \"" + name + "\" is declared twice");
+    if (name == "opaque" && !any_opaque)
+      n.fail("effect \"opaque\" has nothing to act on: no object uses an opaque material (\"opaque\": true)");
+    if (name == "transparency" && !any_transparent)
+      n.fail("effect \"transparency\" has nothing to act on: every object's material is opaque");
+    if (name == "self-shadowing" && !s.light)
+      n.fail("effect \"self-shadowing\" needs a light: add \"light\": {\"eye\": [x, y, z], \"target\": [x, y, z]}");
+    declared.push_back(name);
+  }
+  for (const auto& v : valid)  // canonical order
+    if (std::find(declared.begin(), declared.end(), v) != declared.end()) s.effects.push_back(v);
+}
+
 }  // namespace
+
+const std::vector<std::string>& effect_names() {
+  static const std::vector<std::string> names = {"opaque", "transparency", "self-shadowing"};
+  return names;
+}
+
+bool SceneDesc::has_effect(const std::string& e) const {
+  return std::find(effects.begin(), effects.end(), e) != effects.end();
+}
 
 const View& SceneDesc::view(const std::string& n) const {
   for (const auto& v : views)
@@ -376,7 +456,8 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     throw SceneError(path + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + what);
   }
   Node root(j, path, text, {});
-  root.expect_object({"name", "description", "background", "effects", "materials", "objects", "views", "model_roots"});
+  root.expect_object(
+      {"name", "description", "background", "effects", "light", "materials", "objects", "views", "model_roots"});
   SceneDesc s;
   s.path = path;
   s.name = root.has("name") ? root.child("name").str() : std::filesystem::path(path).stem().string();
@@ -387,15 +468,6 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     for (size_t i = 0; i < r.raw().size(); ++i) s.model_roots.push_back(r.element(i).str());
   }
   if (root.has("background")) s.background = root.child("background").vec3(0, 1);
-  if (root.has("effects")) {
-    auto e = root.child("effects");
-    if (!e.raw().is_array()) e.fail("expected an array of effect names, e.g. [\"transparency\"]");
-    for (size_t i = 0; i < e.raw().size(); ++i) {
-      auto name = e.element(i).str();
-      if (name != "transparency") e.element(i).fail("unknown effect \"" + name + "\"; expected \"transparency\"");
-      s.effects.push_back(name);
-    }
-  }
   if (!root.has("materials")) root.fail("expected \"materials\": {\"NAME\": {\"colour\": [r, g, b], \"alpha\": a}}");
   auto mats = root.child("materials");
   mats.expect_object({});
@@ -454,11 +526,12 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
                         "spacing",
                         "colour_mix",
                         "model_opacity",
+                        "opaque_unless_translucent",
                         "alpha_by_material",
                         "exclude_materials"});
       for (const auto& [pk, pv] : pn.raw().items()) {
         auto v = pn.child(pk);
-        if (pk == "model_opacity") {
+        if (pk == "model_opacity" || pk == "opaque_unless_translucent") {
           v.boolean();
         } else if (pk == "alpha_by_material") {
           v.expect_object({});
@@ -477,6 +550,7 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     if (obj.params.is_null()) obj.params = json::object();
     s.objects.push_back(std::move(obj));
   }
+  parse_light_and_effects(root, s);
   if (!root.has("views")) root.fail("expected \"views\": {\"NAME\": {\"eye\": [x, y, z], ...}}");
   auto views = root.child("views");
   views.expect_object({});
@@ -519,13 +593,14 @@ SceneDesc load_scene(const std::string& name_or_path) {
   return parse_scene(path.string(), ss.str());
 }
 
-Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail) {
+Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque) {
   Builder b;
   for (const auto& o : scene.objects) {
     json p = o.params;
     if (detail == Detail::Small && o.small.is_object())
       for (const auto& [k, v] : o.small.items()) p[k] = v;
     const Material& m = scene.material(o.material);
+    b.opaque = m.opaque;
     if (o.generator == "planes")
       gen_planes(b, p, m);
     else if (o.generator == "hairball")
@@ -535,24 +610,25 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail) {
     else
       gen_smoke(b, p, m, view);
   }
-  if (view.order == SubmitOrder::AsGenerated) return std::move(b.mesh);
   // Reorder whole primitives by their centroid's distance to the eye (stable: ties keep generation order).
   std::vector<size_t> order(b.groups.size());
-  std::vector<float> dist(b.groups.size());
-  for (size_t i = 0; i < order.size(); ++i) {
-    order[i] = i;
-    dist[i] = glm::length(b.centroids[i] - view.eye);
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  if (view.order != SubmitOrder::AsGenerated) {
+    std::vector<float> dist(b.groups.size());
+    for (size_t i = 0; i < order.size(); ++i) dist[i] = glm::length(b.centroids[i] - view.eye);
+    bool front_to_back = view.order == SubmitOrder::FrontToBack;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t c) { return front_to_back ? dist[a] < dist[c] : dist[a] > dist[c]; });
   }
-  bool front_to_back = view.order == SubmitOrder::FrontToBack;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t c) { return front_to_back ? dist[a] < dist[c] : dist[a] > dist[c]; });
-  std::vector<unsigned> indices;
+  std::vector<unsigned> indices, opaque;
   indices.reserve(b.mesh.indices.size());
   for (size_t g : order) {
     auto [first, count] = b.groups[g];
-    indices.insert(indices.end(), b.mesh.indices.begin() + first, b.mesh.indices.begin() + first + count);
+    auto& out = split_opaque && b.group_opaque[g] ? opaque : indices;
+    out.insert(out.end(), b.mesh.indices.begin() + first, b.mesh.indices.begin() + first + count);
   }
   b.mesh.indices = std::move(indices);
+  b.mesh.opaque_indices = std::move(opaque);
   return std::move(b.mesh);
 }
 

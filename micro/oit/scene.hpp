@@ -4,6 +4,7 @@
 // scenes/README.md; build_mesh() turns one view of a scene into triangles in submission order.
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -36,6 +37,21 @@ struct View {
   SubmitOrder order = SubmitOrder::AsGenerated;
 };
 
+// A light for the self-shadowing effect: a spot light looking from `eye` at `target` whose
+// frustum (`fov`) holds what it lights; `ambient` is the light a fully shadowed fragment keeps.
+struct Light {
+  glm::vec3 eye{0, 3, 0}, target{0, 0, 0}, up{0, 0, 1};
+  float fov_deg = 45.0f;
+  float ambient = 0.25f;
+};
+
+// The effects a scene can declare ("effects": [...]); each contributes passes (docs/effects.md).
+//   transparency   capture and resolve of the transparent primitives (exact and approximate OIT)
+//   opaque         the opaque primitives drawn first into colour and depth; transparent fragments
+//                  captured against that depth and composited over that colour
+//   self-shadowing an opacity shadow map from the scene's light, read by every shaded fragment
+const std::vector<std::string>& effect_names();
+
 struct SceneObject {
   std::string generator;  // planes | hairball | smoke | model
   std::string file;       // model: the model file, resolved against the scene's model_roots
@@ -47,12 +63,14 @@ struct SceneObject {
 struct SceneDesc {
   std::string name, description, path;
   glm::vec3 background{1.0f};
-  std::vector<std::string> effects;      // e.g. "transparency"
+  std::vector<std::string> effects;      // declared effects, in effect_names() order
+  std::optional<Light> light;            // required by self-shadowing
   std::vector<std::string> model_roots;  // folders searched for model files (after the scene's own folder)
   std::vector<Material> materials;
   std::vector<SceneObject> objects;
   std::vector<View> views;
 
+  bool has_effect(const std::string& e) const;
   const View& view(const std::string& name) const;          // throws SceneError listing the views
   const Material& material(const std::string& name) const;  // throws SceneError
 };
@@ -74,12 +92,15 @@ struct Vertex {
 
 struct Mesh {
   std::vector<Vertex> vertices;
-  std::vector<unsigned> indices;  // triangles, in submission order
-  size_t polygons() const { return indices.size() / 3; }
+  std::vector<unsigned> indices;         // transparent triangles, in submission order
+  std::vector<unsigned> opaque_indices;  // opaque triangles (only when built with split_opaque)
+  size_t polygons() const { return (indices.size() + opaque_indices.size()) / 3; }
 };
 
 // Generates every object for `view` (billboards face its eye) and orders the primitives as the view asks.
-Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail);
+// split_opaque: primitives of opaque materials go to opaque_indices (the opaque effect draws them);
+// otherwise they stay in `indices` with alpha 1, captured like any other fragment.
+Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque = false);
 
 // The camera's view-projection for an aspect ratio; near and far planes enclose the mesh.
 glm::mat4 view_projection(const View& view, const Mesh& mesh, float aspect);
