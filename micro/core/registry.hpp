@@ -82,6 +82,9 @@ class CaseInstance {
   virtual Validation validate() = 0;
   // Values for metric columns that are known without validation (e.g. a model's prediction).
   virtual std::map<std::string, std::string> metrics() const { return {}; }
+  // Parameters whose value was a request the case resolved (effects=scene -> opaque+transparency):
+  // the rows carry what ran, so a row's parameters rerun the same case.
+  virtual std::map<std::string, std::string> resolved_params() const { return {}; }
 };
 
 class Experiment {
@@ -103,6 +106,9 @@ class Experiment {
   // Empty when the case can run on this driver; else the reason it is unsupported.
   virtual std::string unsupported_reason(const GlInfo&, const ParamSet&) const { return ""; }
   virtual std::unique_ptr<CaseInstance> prepare(const ParamSet& params, CaseContext& ctx) = 0;
+  // Before anything runs: throws UsageError for a case the parameter grid allows but the
+  // experiment's data rules out (an effect its scene does not declare).
+  virtual void check_cases(const std::vector<ParamSet>& cases) const { (void)cases; }
 };
 
 class Registry {

@@ -212,6 +212,7 @@ class Runner {
       auto t0 = Clock::now();
       auto before = shaders_->cache_counts();
       c.instance = exp.prepare(rec.params, cctx);
+      for (const auto& [k, v] : c.instance->resolved_params()) rec.params.set(k, v);
       glFinish();
       rec.compile_ms = ms_since(t0);
       auto after = shaders_->cache_counts();
@@ -455,7 +456,8 @@ void check_requests(const Registry& registry, const std::vector<RunRequest>& req
       for (const auto& v : values) it->check(v, e->name());
     }
     try {
-      expand_grid(specs, r.overrides, quick || r.quick);  // a scoped --set that no case uses, or a grid too large
+      // a scoped --set that no case uses, a grid too large, a case the experiment's data rules out
+      e->check_cases(expand_grid(specs, r.overrides, quick || r.quick));
     } catch (const UsageError& err) {
       throw UsageError("experiment '" + e->name() + "': " + err.what());
     }

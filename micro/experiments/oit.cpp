@@ -3,6 +3,8 @@
 // as data (scenes/*.json). This file declares the parameter grid; the cases live in micro/oit/
 // so that `oitbench view` renders with the same code.
 #include <memory>
+#include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "oit/metrics.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/scene.hpp"
+#include "oit/scene_passes.hpp"
 
 namespace oitbench {
 
@@ -104,7 +107,8 @@ class OitExperiment final : public Experiment {
     max_frags.only_when("technique", exact_but("CPU-NATIVE"));
     cs_group.only_when("technique", {"CS-IS", "CS-IMS", "CS-RBS-L"});
     auto_cache.only_when("technique", {"BMA-AUTO"});
-    std::vector<ParamSpec> ps = {scene, view, technique, capture, detail, block, pool, max_frags, cs_group, auto_cache};
+    std::vector<ParamSpec> ps = {scene, view, technique, effects_param(), capture,   detail,
+                                 block, pool, max_frags, cs_group,        auto_cache};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     return ps;
   }
@@ -128,6 +132,8 @@ class OitExperiment final : public Experiment {
         {"bad_pixels", T::Integer, "", "pixels more than the tolerance off the exact reference"},
         {"visit_errors", T::Integer, "", "pixels resolved zero or several times (BMA must resolve each once)"},
         {"tied_pixels", T::Integer, "", "pixels with fragments of equal depth (their order is by colour)"},
+        {"hidden_fragments", T::Integer, "",
+         "opaque effect: transparent fragments behind the opaque depth, never captured (the CPU's count)"},
         // approximate techniques (micro/oit/approx.cpp)
         {"model_rmse", T::Number, "", "rmse of the technique's CPU model against the exact reference"},
         {"model_max_diff", T::Number, "", "largest channel difference between the GPU image and the CPU model"},
@@ -139,6 +145,25 @@ class OitExperiment final : public Experiment {
     m.push_back(sort_source_metric());
     for (auto& x : image_error_metrics()) m.push_back(std::move(x));
     return m;
+  }
+  // An effect the case's scene does not declare is a usage error before anything runs (exit 2);
+  // a scene that does not load is left to the case (its FILE:LINE:COLUMN error).
+  void check_cases(const std::vector<ParamSet>& cases) const override {
+    std::set<std::pair<std::string, std::string>> seen;
+    for (const auto& c : cases) {
+      if (!seen.insert({c.get("scene"), c.get("effects")}).second) continue;
+      SceneDesc s;
+      try {
+        s = load_scene(c.get("scene"));
+      } catch (const std::exception&) {
+        continue;
+      }
+      try {
+        select_effects(s, c.get("effects"));
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+    }
   }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {128, 128}; }

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,6 +16,7 @@
 #include "oit/image_io.hpp"
 #include "oit/reference.hpp"
 #include "oit/scene.hpp"
+#include "oit/scene_passes.hpp"
 #include "oit/storage_layout.hpp"
 #include "shaders/approx/bindings.h"
 
@@ -104,7 +106,8 @@ class ApproxCase final : public OitCase {
   ApproxCase(const ParamSet& p, CaseContext& ctx)
       : width_(ctx.width()),
         height_(ctx.height()),
-        scene_(load_scene(p.get("scene"))),
+        passes_(p, ctx),
+        scene_(passes_.scene()),
         out_(ctx.width(), ctx.height(), GL_RGBA32F),
         accum_(ctx.width(), ctx.height(), GL_RGBA32F),
         flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
@@ -121,15 +124,19 @@ class ApproxCase final : public OitCase {
     if (arrays_ && interlock && !ctx.gl().has_extension("GL_ARB_fragment_shader_interlock"))
       throw Unsupported("sync=interlock needs GL_ARB_fragment_shader_interlock");
 
-    const View& view = scene_.view(p.get("view"));
-    Mesh mesh = build_mesh(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full);
-    mesh_ = std::make_unique<GpuMesh>(mesh);
-    glm::mat4 vp = view_projection(view, mesh, static_cast<float>(width_) / height_);
+    const View& view = passes_.view();
+    glm::mat4 vp = passes_.view_projection();
+    passes_.attach_opaque_depth(out_.framebuffer());
+    passes_.attach_opaque_depth(accum_.framebuffer());
     // The planes back out of the perspective matrix (glm::perspective's layout).
     glm::mat4 pm = vp * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
 
-    // The fragments, once: the exact reference and every model work on these.
+    // The fragments, once: the exact reference and every model work on these. With the opaque
+    // effect: every transparent fragment, hidden by the CPU against the opaque pass's depth (the
+    // reference does not trust the technique's own depth test).
+    passes_.draw_opaque();
+    backdrop_ = passes_.read_backdrop();
     size_t pixels = static_cast<size_t>(width_) * height_;
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
     auto capture = build_capture_programs(
@@ -140,14 +147,15 @@ class ApproxCase final : public OitCase {
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    lists_->capture(ids(capture), [&] { mesh_->draw(); });
+    lists_->capture(ids(capture), [&] { passes_.transparent().draw(); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    host_ = lists_->read_back();
+    host_ = visible_fragments(lists_->read_back(), backdrop_, hidden_);
     lists_.reset();  // its pool is not needed for timing
 
     Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
     if (settings_.unguarded) d.push_back({"APPROX_UNGUARDED", ""});
     if (interlock) d.push_back({"SYNC_INTERLOCK", ""});
+    for (auto& x : passes_.defines()) d.push_back(x);
     if (arrays_) {
       std::string storage = p.get("storage");
       layout_ = StorageLayout::parse(storage == "interleaved" ? "interleaved-4x4-a4" : storage);
@@ -183,13 +191,14 @@ class ApproxCase final : public OitCase {
       blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
     }
-    if (resolve_) {
-      glProgramUniform3f(resolve_.get(), glGetUniformLocation(resolve_.get(), "background"), scene_.background.r,
-                         scene_.background.g, scene_.background.b);
-    }
   }
 
+  GLuint opaque_texture() const override { return passes_.opaque_texture(); }
+  std::map<std::string, std::string> resolved_params() const override {
+    return {{"effects", join_effects(passes_.effects())}};
+  }
   void set_view_projection(const glm::mat4& view_proj) override {
+    passes_.set_view_projection(view_proj);
     for (const gl::Program* prog : {&insert_, &blend_})
       if (*prog) set_view_proj(*prog, view_proj);
   }
@@ -198,9 +207,12 @@ class ApproxCase final : public OitCase {
 
   void run(PassTimer& timer) override {
     using T = ApproxTechnique;
+    passes_.run_before(timer);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    if (arrays_) {
+    if (!passes_.transparency()) {  // nothing transparent: the image is the backdrop
+      passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
+    } else if (arrays_) {
       {
         auto t = timer.pass("insert");
         storage_->clear();
@@ -213,7 +225,9 @@ class ApproxCase final : public OitCase {
         glBindImageTexture(APPROX_LOCK_IMAGE_UNIT, locks_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, APPROX_STATS_BINDING, stats_.get());
         glUseProgram(insert_.get());
-        mesh_->draw();
+        passes_.begin_geometry();
+        passes_.transparent().draw();
+        passes_.end_geometry();
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         StorageResources::barrier();
       }
@@ -225,12 +239,15 @@ class ApproxCase final : public OitCase {
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
         glUseProgram(blend_.get());
-        mesh_->draw();
+        passes_.begin_geometry();
+        passes_.transparent().draw();
+        passes_.end_geometry();
         glDisable(GL_BLEND);
       }
       auto t = timer.pass("resolve");
       out_.bind();
       glBindTextureUnit(APPROX_ACCUM_UNIT, accum_.color_texture());
+      passes_.bind_backdrop(resolve_.get());
       glUseProgram(resolve_.get());
       quad_.draw();
     } else if (settings_.technique == T::Wboit) {
@@ -246,24 +263,28 @@ class ApproxCase final : public OitCase {
         glBlendFunci(0, GL_ONE, GL_ONE);
         glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
         glUseProgram(blend_.get());
-        mesh_->draw();
+        passes_.begin_geometry();
+        passes_.transparent().draw();
+        passes_.end_geometry();
         glDisable(GL_BLEND);
       }
       auto t = timer.pass("resolve");
       out_.bind();
       glBindTextureUnit(APPROX_ACCUM_UNIT, accum_.color_texture());
       glBindTextureUnit(APPROX_REVEAL_UNIT, reveal_.get());
+      passes_.bind_backdrop(resolve_.get());
       glUseProgram(resolve_.get());
       quad_.draw();
     } else {
       auto t = timer.pass("blend");
       out_.bind();
-      const float bg[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 1.0f};
-      glClearNamedFramebufferfv(out_.framebuffer(), GL_COLOR, 0, bg);
+      passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
       glEnable(GL_BLEND);
       glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
       glUseProgram(blend_.get());
-      mesh_->draw();
+      passes_.begin_geometry();
+      passes_.transparent().draw();
+      passes_.end_geometry();
       glDisable(GL_BLEND);
     }
     // Outside the timed passes: the frames the flicker metric compares.
@@ -278,13 +299,14 @@ class ApproxCase final : public OitCase {
     auto& m = v.metrics;
     std::vector<float> rgb = rgb_of(out_.read_rgba32f());
     ListStats stats = list_stats(host_);
-    auto ref = composite_reference(host_, scene_.background);
-    ApproxModel model = approx_model(host_, scene_.background, settings_);
+    auto ref = composite_reference(host_, backdrop_);
+    ApproxModel model = approx_model(host_, backdrop_, settings_);
+    if (passes_.opaque()) m["hidden_fragments"] = std::to_string(hidden_);
     ApproxError err = approx_error(rgb, ref);
     m["total_fragments"] = std::to_string(stats.total_fragments);
     m["peak_depth"] = std::to_string(stats.peak_depth);
     m["mean_depth"] = fmt(stats.mean_depth);
-    m["polygons"] = std::to_string(mesh_->polygons());
+    m["polygons"] = std::to_string(passes_.mesh().polygons());
     m["rmse"] = fmt(err.rmse);
     m["psnr"] = fmt(err.psnr);
     m["max_abs_error"] = fmt(err.max_abs_error);
@@ -371,10 +393,12 @@ class ApproxCase final : public OitCase {
   }
 
   int width_, height_;
-  SceneDesc scene_;
+  ScenePasses passes_;
+  const SceneDesc& scene_;
   RenderTarget out_, accum_;
   FullscreenTriangle quad_;
-  std::unique_ptr<GpuMesh> mesh_;
+  Backdrop backdrop_;
+  size_t hidden_ = 0;
   std::unique_ptr<FragmentStorage> lists_;
   HostLists host_;
   ApproxSettings settings_;

@@ -270,7 +270,7 @@ void arrival_order(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
 }
 }  // namespace
 
-ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings& st) {
+ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const ApproxSettings& st) {
   size_t pixels = l.heads.size();
   const int n = st.nodes;
   ApproxModel m;
@@ -283,6 +283,7 @@ ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings&
   if (laat) s.resize(n + 1);  // the head slot
   for (size_t p = 0; p < pixels; ++p) {
     arrival_order(l, p, frags);
+    const glm::vec3 bg = backdrop.at(p);
     glm::vec3 c = bg;
     if (tech == T::Unsorted) {
       for (const auto& f : frags) c = glm::vec3(f.colour) * f.colour.a + c * (1.0f - f.colour.a);

@@ -9,6 +9,7 @@
 
 #include "oit/approx.hpp"
 #include "oit/fragment_storage.hpp"
+#include "oit/reference.hpp"
 
 namespace oitbench::oit {
 
@@ -24,6 +25,6 @@ struct ApproxModel {
   std::vector<float> rgb;  // 3 floats per pixel, background where no fragment landed
 };
 // The technique's own CPU model on the captured fragments (see the header comment).
-ApproxModel approx_model(const HostLists& lists, glm::vec3 background, const ApproxSettings& s);
+ApproxModel approx_model(const HostLists& lists, const Backdrop& backdrop, const ApproxSettings& s);
 
 }  // namespace oitbench::oit

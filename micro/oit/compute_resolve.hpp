@@ -22,6 +22,7 @@ class ComputeResolve {
   // Clears `target`'s colour, resolves every pixel of `lists` into it and waits for nothing: the
   // caller's glFinish or read-back does (the barrier makes the stores visible to both).
   void run(const FragmentStorage& lists, const RenderTarget& target) const;
+  GLuint program() const { return program_.get(); }
 
  private:
   gl::Program program_;

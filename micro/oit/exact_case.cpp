@@ -27,6 +27,7 @@
 #include "oit/reference.hpp"
 #include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
+#include "oit/scene_passes.hpp"
 
 namespace oitbench::oit {
 
@@ -65,12 +66,10 @@ class ExactCase final : public OitCase {
         auto_(technique_ == "BMA-AUTO"),
         use_auto_cache_(p.get("bma_auto_cache") == "on"),
         block_(static_cast<int>(p.get_int("block"))),
-        scene_(load_scene(p.get("scene"))),
+        passes_(p, ctx),
         target_(ctx.width(), ctx.height(), GL_RGBA32F, true) {
-    const View& view = scene_.view(p.get("view"));
-    Mesh mesh = build_mesh(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full);
-    mesh_ = std::make_unique<GpuMesh>(mesh);
-    view_proj_ = view_projection(view, mesh, static_cast<float>(ctx.width()) / ctx.height());
+    passes_.attach_opaque_depth(target_.framebuffer());
+    view_proj_ = passes_.view_projection();
     size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
     long long init = p.get_int("initial_pool");
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx,
@@ -81,6 +80,7 @@ class ExactCase final : public OitCase {
 
     // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
     // (the next power of two at or above it, as the paper does) before anything is compiled.
+    passes_.draw_opaque();
     overflow_rerenders_ += capture();
     ListStats stats = list_stats(lists_->read_back());
     long long forced = p.get_int("max_frags");
@@ -91,7 +91,7 @@ class ExactCase final : public OitCase {
       auto [gx, gy] = parse_group(p.get("cs_group"));
       note_sort(sort_of_technique(technique_), max_frags_);
       compute_resolve_ = std::make_unique<ComputeResolve>(
-          ctx, resolve_defines(sort_of_technique(technique_), max_frags_), scene_.background, gx, gy);
+          ctx, resolve_defines(sort_of_technique(technique_), max_frags_), passes_.scene().background, gx, gy);
       return;
     }
     if (bma_) {
@@ -115,8 +115,13 @@ class ExactCase final : public OitCase {
     }
   }
 
+  GLuint opaque_texture() const override { return passes_.opaque_texture(); }
+  std::map<std::string, std::string> resolved_params() const override {
+    return {{"effects", join_effects(passes_.effects())}};
+  }
   void set_view_projection(const glm::mat4& view_proj) override {
     view_proj_ = view_proj;
+    passes_.set_view_projection(view_proj);
     for (const auto& prog : capture_)
       glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE,
                                 &view_proj_[0][0]);
@@ -137,6 +142,11 @@ class ExactCase final : public OitCase {
   unsigned max_frags() const override { return max_frags_; }
 
   void run(PassTimer& timer) override {
+    passes_.run_before(timer);
+    if (!passes_.transparency()) {  // nothing transparent: the image is the backdrop, no capture or resolve
+      passes_.fill_with_backdrop(target_.framebuffer(), target_.color_texture());
+      return;
+    }
     target_.bind();
     {
       auto t = timer.pass("capture");
@@ -151,13 +161,15 @@ class ExactCase final : public OitCase {
       {
         auto t = timer.cpu_pass("readback");  // a transfer the CPU waits for: the CPU clock times it
         host_ = lists_->read_back();
+        native_backdrop_ = passes_.read_backdrop();
       }
       auto t = timer.cpu_pass("resolve");  // C++ threads: no GL work for a query to time
-      resolve_native(host_, scene_.background, 0, wrong_result_, native_out_);
+      resolve_native(host_, native_backdrop_, 0, wrong_result_, native_out_);
       return;
     }
     if (compute_) {
       auto t = timer.pass("resolve");
+      passes_.bind_backdrop(compute_resolve_->program());
       compute_resolve_->run(*lists_, target_);
       return;
     }
@@ -234,10 +246,12 @@ class ExactCase final : public OitCase {
 
   Validation validate() override {
     Validation v;
+    auto& m = v.metrics;
+    m["polygons"] = std::to_string(passes_.mesh().polygons());
+    if (!passes_.transparency()) return validate_backdrop_only();
     HostLists host = native_ ? std::move(host_) : lists_->read_back();
     ListStats stats = list_stats(host);
-    auto& m = v.metrics;
-    m["polygons"] = std::to_string(mesh_->polygons());
+    const Backdrop backdrop = passes_.read_backdrop();
     m["total_fragments"] = std::to_string(stats.total_fragments);
     m["peak_depth"] = std::to_string(stats.peak_depth);
     m["mean_depth"] = fmt(stats.mean_depth);
@@ -278,13 +292,30 @@ class ExactCase final : public OitCase {
       problems.push_back(std::to_string(truncated) + " pixel(s) deeper than MAX_FRAGS=" + std::to_string(max_frags_) +
                          " were truncated");
     std::vector<float> rgba = native_ ? native_out_ : target_.read_rgba32f();
-    auto ref = composite_reference(host, scene_.background);
-    auto err = compare_with_reference(rgba, ref, stats, scene_.background, width_, kTolerance);
+    // With the opaque effect the reference does not trust the capture's depth test: every
+    // transparent fragment captured again without it, hidden on the CPU by the opaque depth.
+    HostLists reference_lists;
+    if (passes_.opaque()) {
+      if (size_t behind = hidden_fragments(host, backdrop))
+        problems.push_back(std::to_string(behind) +
+                           " captured fragment(s) lie at or behind the opaque depth (the capture's depth test failed)");
+      size_t hidden = 0;
+      reference_lists = visible_fragments(capture_unoccluded(), backdrop, hidden);
+      m["hidden_fragments"] = std::to_string(hidden);
+      ListStats ref_stats = list_stats(reference_lists);
+      if (ref_stats.total_fragments != stats.total_fragments)
+        problems.push_back("the capture kept " + std::to_string(stats.total_fragments) +
+                           " fragments, the CPU's depth test of an unoccluded capture keeps " +
+                           std::to_string(ref_stats.total_fragments));
+    }
+    const HostLists& ref_host = passes_.opaque() ? reference_lists : host;
+    auto ref = composite_reference(ref_host, backdrop);
+    auto err = compare_with_reference(rgba, ref, stats, backdrop, width_, kTolerance);
     m["max_abs_error"] = fmt(err.max_abs_error);
     m["rmse"] = fmt(err.rmse);
     m["bad_pixels"] = std::to_string(err.bad_pixels);
     m["visit_errors"] = std::to_string(err.visit_errors);
-    if (!dump_.empty()) write_images(rgba, ref, stats);
+    if (!dump_.empty()) write_images(rgba, ref, stats, backdrop);
     if (err.visit_errors)
       problems.push_back(std::to_string(err.visit_errors) +
                          " pixel(s) not resolved exactly once (covered) or resolved "
@@ -310,13 +341,14 @@ class ExactCase final : public OitCase {
   // `oitbench render --out PATH.png`: PATH.png and PATH.pfm (the resolve, 8-bit and float), PATH-diff8.png (|image -
   // reference| x 8), PATH-depth.png (depth complexity in false colour, black = empty, log scale up to the peak) and
   // PATH-depth-histogram.csv (pixels per depth complexity).
-  void write_images(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats) const {
+  void write_images(const std::vector<float>& rgba, const std::vector<double>& ref, const ListStats& stats,
+                    const Backdrop& backdrop) const {
     const size_t pixels = stats.depth.size();
     std::vector<float> rgb(pixels * 3), depth(pixels * 3);
     std::vector<size_t> histogram(stats.peak_depth + 1, 0);
     const double peak = std::log2(1.0 + std::max(1u, stats.peak_depth));
     for (size_t p = 0; p < pixels; ++p) {
-      for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = rgba[p * 4 + 3] == 0.0f ? scene_.background[k] : rgba[p * 4 + k];
+      for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = rgba[p * 4 + 3] == 0.0f ? backdrop.at(p)[k] : rgba[p * 4 + k];
       ++histogram[stats.depth[p]];
       // blue (1 fragment) -> green -> red (peak), on a log scale; black where nothing landed
       float t = stats.depth[p] ? static_cast<float>(std::log2(1.0 + stats.depth[p]) / peak) : 0.0f;
@@ -333,14 +365,39 @@ class ExactCase final : public OitCase {
       if (histogram[d]) csv << d << "," << histogram[d] << "\n";
   }
 
-  int capture() {
+  // The technique's capture: with the opaque effect, against the opaque depth (early fragment
+  // tests in capture.frag: a hidden fragment is never stored).
+  int capture(bool depth_test = true) {
     target_.bind();
-    glDisable(GL_DEPTH_TEST);
+    if (depth_test)
+      passes_.begin_geometry();
+    else
+      glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    int r = lists_->capture(ids(capture_), [&] { mesh_->draw(); });
+    int r = lists_->capture(ids(capture_), [&] { passes_.transparent().draw(); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    passes_.end_geometry();
     return r;
+  }
+  // Validation only: every transparent fragment, the opaque depth test off.
+  HostLists capture_unoccluded() {
+    capture(false);
+    return lists_->read_back();
+  }
+  // No transparency effect: no capture and no resolve ran; the image must be the backdrop.
+  Validation validate_backdrop_only() {
+    Validation v;
+    v.metrics["polygons"] = std::to_string(passes_.mesh().polygons());
+    v.metrics["total_fragments"] = "0";
+    std::vector<float> rgba = target_.read_rgba32f();
+    const Backdrop b = passes_.read_backdrop();
+    size_t off = 0;
+    for (size_t p = 0; p < rgba.size() / 4; ++p)
+      for (int k = 0; k < 3; ++k) off += std::abs(rgba[p * 4 + k] - b.at(p)[k]) > kTolerance;
+    v.valid = off == 0;
+    if (off) v.reason = std::to_string(off) + " channel value(s) differ from the opaque pass's image";
+    return v;
   }
 
   size_t interval_of(unsigned depth) const {
@@ -353,14 +410,13 @@ class ExactCase final : public OitCase {
   Defines resolve_defines(ResolveSort sort, unsigned max_frags) const {
     Defines d = sort_defines(sort, max_frags, static_cast<unsigned>(block_));
     for (auto& x : lists_->defines()) d.push_back(x);
+    for (auto& x : passes_.defines()) d.push_back(x);
     return d;
   }
 
   gl::Program build_resolve(ResolveSort sort, unsigned max_frags) {
     Defines d = resolve_defines(sort, max_frags);
     auto prog = ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}}, d);
-    glProgramUniform3f(prog.get(), glGetUniformLocation(prog.get(), "background"), scene_.background.r,
-                       scene_.background.g, scene_.background.b);
     glProgramUniform1i(prog.get(), glGetUniformLocation(prog.get(), "zero"), 0);
     return prog;
   }
@@ -425,7 +481,7 @@ class ExactCase final : public OitCase {
         if (r) ms.push_back(ctx_.gpu_clock() ? static_cast<double>(ns) * 1e-6 : cpu_ms);
       }
       std::sort(ms.begin(), ms.end());
-      if (ref.empty()) ref = composite_reference(host, scene_.background);
+      if (ref.empty()) ref = composite_reference(host, passes_.read_backdrop());
       unsigned lo = i == 0 ? 1 : interval_tops_[i] / 2 + 1;
       unsigned hi = i + 1 == interval_tops_.size() ? max_frags_ : interval_tops_[i];
       bool valid = interval_matches_reference(target_.read_rgba32f(), ref, stats, lo, hi, kTolerance);
@@ -443,6 +499,7 @@ class ExactCase final : public OitCase {
     lists_->bind();
   }
   void draw_resolve(const gl::Program& prog) {
+    passes_.bind_backdrop(prog.get());
     glUseProgram(prog.get());
     quad_.draw();
   }
@@ -455,10 +512,9 @@ class ExactCase final : public OitCase {
   std::string technique_;
   bool bma_, native_, compute_, auto_, use_auto_cache_;
   int block_;
-  SceneDesc scene_;
+  ScenePasses passes_;
   RenderTarget target_;
   FullscreenTriangle quad_;
-  std::unique_ptr<GpuMesh> mesh_;
   glm::mat4 view_proj_;
   std::unique_ptr<FragmentStorage> lists_;
   std::vector<gl::Program> capture_;  // one program per capture pass of the storage
@@ -473,6 +529,7 @@ class ExactCase final : public OitCase {
   std::vector<double> capture_ms_, count_ms_;  // PPPA: count_ms_ is the count pass + prefix sum
   std::vector<std::string> sort_sources_;      // ShaderLibrary::source_id of each library sort file run
   HostLists host_;
+  Backdrop native_backdrop_;
   std::vector<float> native_out_;
 };
 

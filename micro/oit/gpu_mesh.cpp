@@ -1,18 +1,23 @@
 #include "oit/gpu_mesh.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace oitbench::oit {
 
-GpuMesh::GpuMesh(const Mesh& mesh)
+GpuMesh::GpuMesh(const Mesh& mesh) : GpuMesh(mesh, mesh.indices) {}
+
+GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& indices)
     : vertices_(gl::make_buffer()),
       indices_(gl::make_buffer()),
       vao_(gl::make_vertex_array()),
-      index_count_(mesh.indices.size()) {
+      index_count_(indices.size()) {
   glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(Vertex)),
                        mesh.vertices.data(), 0);
-  glNamedBufferStorage(indices_.get(), static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(unsigned)),
-                       mesh.indices.data(), 0);
+  // An empty buffer store is invalid in GL: a mesh without such triangles keeps one unused index.
+  const unsigned none = 0;
+  glNamedBufferStorage(indices_.get(), static_cast<GLsizeiptr>(std::max<size_t>(indices.size(), 1) * sizeof(unsigned)),
+                       indices.empty() ? &none : indices.data(), 0);
   GLuint vao = vao_.get();
   glVertexArrayVertexBuffer(vao, 0, vertices_.get(), 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vao, indices_.get());
@@ -29,6 +34,7 @@ GpuMesh::GpuMesh(const Mesh& mesh)
 }
 
 void GpuMesh::draw() const {
+  if (index_count_ == 0) return;
   glBindVertexArray(vao_.get());
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count_), GL_UNSIGNED_INT, nullptr);
 }

@@ -8,8 +8,9 @@ namespace oitbench::oit {
 
 class GpuMesh {
  public:
-  explicit GpuMesh(const Mesh& mesh);
-  void draw() const;  // all triangles, in submission order
+  explicit GpuMesh(const Mesh& mesh);                               // the transparent primitives (mesh.indices)
+  GpuMesh(const Mesh& mesh, const std::vector<unsigned>& indices);  // these triangles of the mesh
+  void draw() const;                                                // all triangles, in submission order
   size_t polygons() const { return index_count_ / 3; }
 
  private:

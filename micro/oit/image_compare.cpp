@@ -27,7 +27,7 @@ ApproxError approx_error(const std::vector<float>& rgb, const std::vector<double
 }
 
 ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& ref,
-                                  const ListStats& stats, glm::vec3 background, int width, double tolerance) {
+                                  const ListStats& stats, const Backdrop& backdrop, int width, double tolerance) {
   ImageError e;
   double sum_sq = 0;
   size_t pixels = ref.size() / 3;
@@ -36,7 +36,7 @@ ImageError compare_with_reference(const std::vector<float>& rgba, const std::vec
     bool covered = stats.depth[p] > 0;
     if (g[3] != (covered ? 1.0f : 0.0f)) ++e.visit_errors;
     // Equal depths are compared too: every resolve breaks depth ties by colour bits, like the reference.
-    glm::dvec3 got = g[3] == 0.0f ? glm::dvec3(background) : glm::dvec3(g[0], g[1], g[2]);
+    glm::dvec3 got = g[3] == 0.0f ? glm::dvec3(backdrop.at(p)) : glm::dvec3(g[0], g[1], g[2]);
     double worst = 0;
     for (int k = 0; k < 3; ++k) {
       double d = std::abs(got[k] - ref[p * 3 + k]);

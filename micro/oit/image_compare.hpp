@@ -18,7 +18,7 @@ struct ImageError {
 };
 // Compares a resolve's RGBA output (see above) with the reference; `tolerance` per channel.
 ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& reference,
-                                  const ListStats& stats, glm::vec3 background, int width, double tolerance);
+                                  const ListStats& stats, const Backdrop& backdrop, int width, double tolerance);
 
 // Image statistics against the exact reference (double RGB per pixel).
 struct ApproxError {

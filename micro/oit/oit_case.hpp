@@ -21,6 +21,8 @@ class OitCase : public CaseInstance {
   virtual void set_view_projection(const glm::mat4& view_proj) = 0;
   // The last run()'s image, RGBA32F: the colour where alpha > 0, the scene's background elsewhere.
   virtual GLuint result_texture() = 0;
+  // The opaque effect's colour (what lies behind where result_texture() has alpha 0), or 0.
+  virtual GLuint opaque_texture() const { return 0; }
   // The fragments the last run() captured, or nullptr where the technique keeps none on the GPU.
   virtual const FragmentStorage* fragments() const { return nullptr; }
   // MAX_FRAGS in use (0 where the technique has none).

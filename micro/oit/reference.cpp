@@ -61,7 +61,47 @@ ListStats list_stats(const HostLists& l) {
   return s;
 }
 
-std::vector<double> composite_reference(const HostLists& l, glm::vec3 background) {
+HostLists visible_fragments(const HostLists& l, const Backdrop& b, size_t& hidden) {
+  HostLists out;
+  out.width = l.width;
+  out.height = l.height;
+  out.error = l.error;
+  out.heads.assign(l.heads.size(), kListEnd);
+  hidden = 0;
+  std::vector<Frag> f;
+  for (size_t p = 0; p < l.heads.size(); ++p) {
+    gather(l, p, f);
+    // Kept in list order (head first), so a pixel's order is the capture's, minus the hidden ones.
+    for (auto it = f.rbegin(); it != f.rend(); ++it) {
+      if (b.hides(p, it->depth)) {
+        ++hidden;
+        continue;
+      }
+      out.nodes.push_back({it->colour, std::bit_cast<unsigned>(it->depth)});
+      out.next.push_back(out.heads[p]);
+      out.heads[p] = static_cast<unsigned>(out.nodes.size() - 1);
+    }
+  }
+  if (!l.counts.empty()) {
+    out.counts.assign(l.heads.size(), 0);
+    for (size_t p = 0; p < l.heads.size(); ++p)
+      for (unsigned n = out.heads[p]; n != kListEnd; n = out.next[n]) ++out.counts[p];
+  }
+  return out;
+}
+
+size_t hidden_fragments(const HostLists& l, const Backdrop& b) {
+  size_t hidden = 0;
+  if (b.depth.empty()) return 0;
+  std::vector<Frag> f;
+  for (size_t p = 0; p < l.heads.size(); ++p) {
+    gather(l, p, f);
+    for (const auto& fr : f) hidden += b.hides(p, fr.depth);
+  }
+  return hidden;
+}
+
+std::vector<double> composite_reference(const HostLists& l, const Backdrop& backdrop) {
   size_t pixels = l.heads.size();
   std::vector<double> out(pixels * 3);
   std::vector<Frag> f;
@@ -78,13 +118,13 @@ std::vector<double> composite_reference(const HostLists& l, glm::vec3 background
       c += transmittance * k.a * glm::dvec3(k);
       transmittance *= 1.0 - k.a;
     }
-    c += transmittance * glm::dvec3(background);
+    c += transmittance * glm::dvec3(backdrop.at(p));
     for (int k = 0; k < 3; ++k) out[p * 3 + k] = c[k];
   }
   return out;
 }
 
-void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool perturb, std::vector<float>& out) {
+void resolve_native(const HostLists& l, const Backdrop& backdrop, int threads, bool perturb, std::vector<float>& out) {
   size_t pixels = l.heads.size();
   out.assign(pixels * 4, 0.0f);
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -97,7 +137,7 @@ void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool 
         std::sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) {
           return a.depth != b.depth ? a.depth > b.depth : a.colour > b.colour;  // the reference's tie-break
         });
-        glm::vec3 c = background;
+        glm::vec3 c = backdrop.at(p);
         for (const auto& fr : f) {
           glm::vec4 k = unpack(fr.colour);
           c = glm::mix(c, glm::vec3(k), k.a);

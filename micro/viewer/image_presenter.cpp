@@ -12,12 +12,14 @@ ImagePresenter::ImagePresenter(const ShaderLibrary& shaders)
           {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "viewer/present.frag"}}, {})) {}
 
 void ImagePresenter::draw(GLuint image, int image_width, int image_height, glm::vec3 background, int fb_width,
-                          int fb_height) const {
+                          int fb_height, GLuint opaque) const {
   glUseProgram(program_.get());
   glUniform3f(glGetUniformLocation(program_.get(), "background"), background.r, background.g, background.b);
   glUniform2f(glGetUniformLocation(program_.get(), "texelsPerPixel"), static_cast<float>(image_width) / fb_width,
               static_cast<float>(image_height) / fb_height);
+  glUniform1i(glGetUniformLocation(program_.get(), "hasOpaque"), opaque != 0);
   glBindTextureUnit(0, image);
+  glBindTextureUnit(1, opaque);
   triangle_.draw();
 }
 

@@ -14,7 +14,9 @@ class ImagePresenter {
  public:
   explicit ImagePresenter(const ShaderLibrary& shaders);
   // Draws `image` (image_width x image_height) over the bound framebuffer's viewport.
-  void draw(GLuint image, int image_width, int image_height, glm::vec3 background, int fb_width, int fb_height) const;
+  // `opaque`: the opaque effect's colour (same size as `image`), or 0 for the constant background.
+  void draw(GLuint image, int image_width, int image_height, glm::vec3 background, int fb_width, int fb_height,
+            GLuint opaque = 0) const;
 
  private:
   gl::Program program_;

@@ -408,7 +408,8 @@ class Viewer {
     if (case_ && depth_view_ && case_->fragments() && counts_) {
       depth_->draw(fb.x, fb.y);
     } else if (case_) {
-      presenter_->draw(case_->result_texture(), case_size_.x, case_size_.y, scene_.background, fb.x, fb.y);
+      presenter_->draw(case_->result_texture(), case_size_.x, case_size_.y, scene_.background, fb.x, fb.y,
+                       case_->opaque_texture());
     } else {
       glClearColor(scene_.background.r, scene_.background.g, scene_.background.b, 1);
       glClear(GL_COLOR_BUFFER_BIT);

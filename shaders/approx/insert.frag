@@ -21,6 +21,9 @@
 #include "../storage/storage.glsl"
 #include "nodes.glsl"
 #include "bindings.h"
+// The opaque effect's depth test must come before the node stores (a hidden fragment is never
+// inserted); without a depth attachment this changes nothing.
+layout(early_fragment_tests) in;
 
 in vec4 vColour;
 in vec2 vUv;

@@ -18,7 +18,7 @@
 layout(binding = APPROX_ACCUM_UNIT) uniform sampler2D accumulation;
 #endif
 
-uniform vec3 background;
+#include "../oit/backdrop.glsl"
 uniform int zero;
 layout(location = 0) out vec4 fragColour;
 
@@ -49,7 +49,7 @@ void main() {
     c += t * rC[i].rgb;
     t *= rC[i].a;
   }
-  c += t * background;
+  c += t * backdrop_colour(p);
 #else
   vec4 acc = texelFetch(accumulation, p, 0);
   float total = visibility(p, DEPTH_EMPTY);
@@ -57,7 +57,7 @@ void main() {
   float opacity = 1.0 - total;
   if (acc.a > opacity * (1.0 + 1e-5) + 1e-6) acc.rgb *= opacity / acc.a;
 #endif
-  vec3 c = acc.rgb + total * background;
+  vec3 c = acc.rgb + total * backdrop_colour(p);
 #endif
 #ifdef OITBENCH_FAULT_WRONG_RESULT
   if (p.x == p.y) c.r += 1.0 / 16.0;  // the diagonal off by 16/255: the validator must notice

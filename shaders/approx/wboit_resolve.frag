@@ -5,7 +5,7 @@
 #include "bindings.h"
 layout(binding = APPROX_ACCUM_UNIT) uniform sampler2D accumulation;
 layout(binding = APPROX_REVEAL_UNIT) uniform sampler2D revealage;
-uniform vec3 background;
+#include "../oit/backdrop.glsl"
 uniform int zero;
 layout(location = 0) out vec4 fragColour;
 void main() {
@@ -17,7 +17,7 @@ void main() {
 #else
   vec3 average = acc.rgb / clamp(acc.a, 1e-4, 5e4);
 #endif
-  vec3 c = average * (1.0 - r) + background * r;
+  vec3 c = average * (1.0 - r) + backdrop_colour(p) * r;
 #ifdef OITBENCH_FAULT_WRONG_RESULT
   if (p.x == p.y) c.r += 1.0 / 16.0;
 #endif

@@ -16,7 +16,7 @@
 //               pixel's list holds sorted runs of RBS_M: the same fragments, so the CPU reference
 //               (which sorts for itself) still applies.
 // Expects (resolve_pixel.glsl): sorts/api.glsl and SORT_T / SORT_GT bound, RBS_M (<= 32), MAX_K
-// (MAX_FRAGS = RBS_M * MAX_K), blend_over(vec3, uvec2), background, the storage API (RBS-G: with
+// (MAX_FRAGS = RBS_M * MAX_K), blend_over(vec3, uvec2), backdrop, the storage API (RBS-G: with
 // FRAG_STORE).
 #pragma optionNV(unroll all)
 
@@ -44,7 +44,7 @@ int load_block(inout uint node) {
 vec3 resolve_pixel(uint node) {
   int m = load_block(node);
   sort_register(m);
-  vec3 c = background;
+  vec3 c = backdrop;
 #define RBS_BLEND(i) if ((i) < m) c = blend_over(c, registers[i]);
   SORT_EACH_INDEX(RBS_BLEND)
   return c;
@@ -70,7 +70,7 @@ vec3 resolve_pixel(uint node) {
     blockEnd[j] = j < k ? min((j + 1) * RBS_M, n) : blockIdx[j];
     if (j < k) candidate[j] = frags[blockIdx[j]];
   }
-  vec3 c = background;
+  vec3 c = backdrop;
   for (int f = 0; f < n; ++f) {
     int b = -1;
     uvec2 best = uvec2(0u);
@@ -110,7 +110,7 @@ vec3 resolve_pixel(uint node) {
   uvec2 candidate[MAX_K];
   for (int j = 0; j < MAX_K; ++j)
     if (j < k) candidate[j] = FRAG_LOAD(blockHead[j]);
-  vec3 c = background;
+  vec3 c = backdrop;
   for (int f = 0; f < n; ++f) {
     int b = -1;
     uvec2 best = uvec2(0u);

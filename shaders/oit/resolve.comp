@@ -8,7 +8,8 @@
 
 layout(local_size_x = CS_GROUP_X, local_size_y = CS_GROUP_Y) in;
 layout(binding = 4, rgba32f) uniform writeonly image2D resolved;
-uniform vec3 background;
+#include "backdrop.glsl"
+vec3 backdrop;  // behind this pixel's layers: resolve_pixel() blends onto it
 uniform int zero;  // always 0 (fault hooks)
 
 #include "resolve_pixel.glsl"
@@ -18,6 +19,7 @@ void main() {
   if (any(greaterThanEqual(p, FRAG_SCREEN_SIZE()))) return;
   uint head = FRAG_BEGIN(p);
   if (!FRAG_VALID(head)) return;
+  backdrop = backdrop_colour(p);
   vec3 c = resolve_pixel(head);
 #ifdef OITBENCH_FAULT_WRONG_RESULT
   if (p.x == p.y) c.r += 1.0 / 64.0;  // the diagonal off by 4/255: the validator must notice

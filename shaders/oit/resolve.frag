@@ -10,7 +10,8 @@
 // images and may discard), and every interval pass would cost a full-screen resolve.
 layout(early_fragment_tests) in;
 
-uniform vec3 background;
+#include "backdrop.glsl"
+vec3 backdrop;  // behind this pixel's layers: resolve_pixel() blends onto it
 uniform int zero;  // always 0 (fault hooks)
 layout(location = 0) out vec4 fragColour;
 
@@ -20,6 +21,7 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   uint head = FRAG_BEGIN(p);
   if (!FRAG_VALID(head)) discard;
+  backdrop = backdrop_colour(p);
   vec3 c = resolve_pixel(head);
 #ifdef OITBENCH_FAULT_WRONG_RESULT
   if (p.x == p.y) c.r += 1.0 / 64.0;  // the diagonal off by 4/255: the validator must notice

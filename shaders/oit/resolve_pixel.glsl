@@ -1,6 +1,6 @@
 // resolve_pixel(head): the exact-OIT resolve of one pixel, shared by the fragment-shader resolve
 // (resolve.frag) and the compute one (resolve.comp): load the pixel's list, sort it far-to-near
-// with the sort the variant names, blend back to front with "over" onto `background`. The sorts
+// with the sort the variant names, blend back to front with "over" onto `backdrop`. The sorts
 // are the library's (shaders/sorts/), the same files the sort experiment times:
 //   SORT_IS:    insertion sort (sorts/insertion.glsl) in a local array of MAX_FRAGS
 //               (BASE-IS, BMA-IS, CS-IS)
@@ -13,7 +13,7 @@
 //   SORT_RBS_G: the same blocks sorted in place in the list's nodes, merged from global memory
 //               (rbs.glsl) (RBS-G)
 // micro/oit/resolve_sort.cpp names the same files for the `sort_source` column.
-// Expects: a storage include, `uniform vec3 background`.
+// Expects: a storage include, `vec3 backdrop` (set per pixel from backdrop.glsl's backdrop_colour()).
 
 vec3 blend_over(vec3 c, uvec2 frag) {
   vec4 k = unpackUnorm4x8(frag.x);
@@ -57,7 +57,7 @@ vec3 resolve_pixel(uint node) {
   else
 #endif
   sort_insertion();
-  vec3 c = background;
+  vec3 c = backdrop;
   for (int i = 0; i < n; ++i) c = blend_over(c, frags[i]);
   return c;
 }

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 namespace oitbench::oit {
 namespace {
@@ -80,6 +83,54 @@ TEST(Scene, SemanticErrorsNameTheLineAndWhatWasExpected) {
 
   msg = error_of(R"({"materials": {}, "objects": [{"generator": "teapot", "material": "x"}], "views": {}})");
   EXPECT_NE(msg.find("unknown generator \"teapot\""), std::string::npos) << msg;
+}
+
+TEST(Scene, EffectsAreCheckedAgainstWhatTheSceneHolds) {
+  auto with = [](const std::string& effects, const std::string& extra = "", bool opaque = false) {
+    return std::string("{\n  \"effects\": ") + effects + ",\n" + extra +
+           "  \"materials\": { \"glass\": { \"alpha\": 0.5 }, \"wall\": { \"opaque\": " + (opaque ? "true" : "false") +
+           " } },\n  \"objects\": [ { \"generator\": \"planes\", \"material\": \"glass\" },\n" +
+           "               { \"generator\": \"planes\", \"material\": \"wall\" } ],\n" +
+           "  \"views\": { \"fwd\": { \"eye\": [0, 0, 3] } }\n}";
+  };
+  std::string msg = error_of(with("[\"transparency\", \"fog\"]"));
+  EXPECT_EQ(msg.rfind("s.json:2:", 0), 0u) << msg;
+  EXPECT_NE(msg.find("unknown effect \"fog\"; valid effects: opaque, transparency, self-shadowing"), std::string::npos)
+      << msg;
+  msg = error_of(with("[\"opaque\", \"transparency\"]"));  // no opaque material
+  EXPECT_EQ(msg.rfind("s.json:2:", 0), 0u) << msg;
+  EXPECT_NE(msg.find("effect \"opaque\" has nothing to act on"), std::string::npos) << msg;
+  msg = error_of(with("[\"transparency\", \"self-shadowing\"]"));
+  EXPECT_NE(msg.find("effect \"self-shadowing\" needs a light"), std::string::npos) << msg;
+  msg = error_of(with("[\"transparency\", \"transparency\"]"));
+  EXPECT_NE(msg.find("declared twice"), std::string::npos) << msg;
+  msg = error_of(with("[\"transparency\"]", "  \"light\": { \"eye\": [0, 3, 0], \"up\": [0, 1, 0] },\n"));
+  EXPECT_EQ(msg.rfind("s.json:3:", 0), 0u) << msg;
+  EXPECT_NE(msg.find("parallel to the light's direction"), std::string::npos) << msg;
+
+  SceneDesc s = parse_scene("s.json", with("[\"transparency\", \"opaque\"]", "", true));
+  EXPECT_EQ(s.effects, (std::vector<std::string>{"opaque", "transparency"}));  // canonical order
+  EXPECT_TRUE(s.has_effect("opaque"));
+  EXPECT_FALSE(s.light.has_value());
+  Mesh split = build_mesh(s, s.view("fwd"), Detail::Full, true);
+  Mesh together = build_mesh(s, s.view("fwd"), Detail::Full, false);
+  EXPECT_EQ(split.opaque_indices.size(), split.indices.size());  // two equal stacks of planes
+  EXPECT_TRUE(together.opaque_indices.empty());
+  EXPECT_EQ(together.indices.size(), split.indices.size() + split.opaque_indices.size());
+  EXPECT_EQ(load_scene("planes").effects, (std::vector<std::string>{"transparency"}));
+}
+
+TEST(Scene, EveryShippedSceneDeclaresItsEffects) {
+  for (const auto& entry : std::filesystem::directory_iterator(default_scene_dir())) {
+    if (entry.path().extension() != ".json") continue;
+    std::ifstream in(entry.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_NE(text.str().find("\"effects\""), std::string::npos) << entry.path() << " declares no effects";
+    SceneDesc s = load_scene(entry.path().string());
+    EXPECT_FALSE(s.effects.empty()) << entry.path();
+  }
+  EXPECT_EQ(load_scene("house").effects, (std::vector<std::string>{"opaque", "transparency"}));
 }
 
 TEST(Scene, ModelScenesLoadThroughAssimp) {

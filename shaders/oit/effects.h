@@ -1,0 +1,7 @@
+// Texture units of the scene effects' resources (micro/oit/scene_passes.cpp binds them), read by
+// every technique's shaders through shaders/oit/backdrop.glsl. Only #defines: valid C++ and GLSL.
+#ifndef OITBENCH_OIT_EFFECTS_H
+#define OITBENCH_OIT_EFFECTS_H
+#define OIT_BACKDROP_UNIT 7      // sampler2D, RGBA32F: the opaque pass's colour (opaque effect)
+#define OIT_OPAQUE_DEPTH_UNIT 8  // sampler2D: the opaque pass's depth, for techniques without a depth buffer
+#endif

@@ -1,0 +1,10 @@
+// The opaque effect's pass: the scene's opaque primitives drawn with an ordinary depth test into
+// colour and depth (micro/oit/scene_passes.cpp). The transparent fragments are then captured
+// against this depth and composited over this colour (shaders/oit/backdrop.glsl).
+#include "../common/oitbench.glsl"
+in vec4 vColour;
+in vec2 vUv;
+in float vSoft;
+layout(location = 0) out vec4 fragColour;
+// alpha 0: the backdrop is what lies behind; a resolve's alpha counts its own work (exact_case.cpp)
+void main() { fragColour = vec4(vColour.rgb, 0.0); }
