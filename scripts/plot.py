@@ -355,11 +355,28 @@ def oit_label(row):
     return t
 
 
+def effects_vary(rows):
+    """True where the rows ran more than one set of scene effects (effects=transparency,opaque+transparency)."""
+    return len({r.get("effects") for r in rows if r.get("effects")}) > 1
+
+
+def oit_effects_label(row, with_effects):
+    """oit_label(), and the effects that ran when a figure compares effect sets (its fragments beside)."""
+    label = oit_label(row)
+    if with_effects and row.get("effects"):
+        label += f"\n[{row['effects']}]"
+        if row.get("total_fragments"):
+            label += f" {oitcsv.to_float(row['total_fragments']):,.0f} frags"
+    return label
+
+
 class _Relabelled:
-    """`data` with the variant column replaced by oit_label(), so the shared bar helpers label by technique."""
+    """`data` with the variant column replaced by oit_label(), so the shared bar helpers label by technique
+    (and by the effects that ran where those vary: each effect's passes are rows of their own, stacked)."""
 
     def __init__(self, data, rows):
-        self.ok = [dict(r, variant=oit_label(r)) for r in rows]
+        with_effects = effects_vary(rows)
+        self.ok = [dict(r, variant=oit_effects_label(r, with_effects)) for r in rows]
         self.params = data.params
         self.passes = data.passes
 
@@ -389,7 +406,9 @@ def plot_oit(data):
 
 
 def error_vs_time(ax, rows, column, title):
-    points = [(value(r), oitcsv.to_float(r.get(column)), oit_label(r)) for r in rows
+    with_effects = effects_vary(rows)
+    points = [(value(r), oitcsv.to_float(r.get(column)), oit_effects_label(r, with_effects).split("\n")[0] +
+               (f" [{r.get('effects')}]" if with_effects else "")) for r in rows
               if oitcsv.to_float(r.get(column)) is not None and value(r) is not None]
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     families = sorted({p[2].split("/")[0] for p in points})

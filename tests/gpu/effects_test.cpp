@@ -138,7 +138,7 @@ class Effects : public GlTest {};
 TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
   for (const char* technique : {"BASE-IS", "BMA-IS", "CS-IS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted"}) {
     std::map<std::string, std::string> p = {
-        {"scene", "house"}, {"view", "V1"}, {"technique", technique}, {"detail", "full"}};
+        {"scene", "house-opaque"}, {"view", "V1"}, {"technique", technique}, {"detail", "full"}};
     p["effects"] = "transparency";
     auto alpha_one = run_case("oit", p, {96, 96});
     p["effects"] = "opaque+transparency";
@@ -157,7 +157,7 @@ TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
 TEST_F(Effects, DroppingTheOpaqueDepthTestFailsEveryTechnique) {
   for (const char* technique : {"BASE-IS", "BMA-RBS-L", "CS-IMS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted"}) {
     std::map<std::string, std::string> p = {
-        {"scene", "house"}, {"view", "V1"}, {"technique", technique}, {"detail", "full"}, {"fault", "no-opaque-depth"}};
+        {"scene", "house-opaque"}, {"view", "V1"}, {"technique", technique}, {"detail", "full"}, {"fault", "no-opaque-depth"}};
     auto v = run_case("oit", p, {96, 96});
     EXPECT_FALSE(v.valid) << technique;
     // The exact techniques keep their fragments: the capture itself is caught; the approximate
@@ -171,7 +171,7 @@ TEST_F(Effects, DroppingTheOpaqueDepthTestFailsEveryTechnique) {
 
 TEST(EffectsCli, AnEffectTheSceneDoesNotDeclareOrKnowIsAUsageError) {
   auto csv = temp_dir("effects-cli") / "x.csv";
-  auto r = run_oitbench({"run", "oit", "--quick", "--set", "scene=house", "--set", "view=V1", "--set",
+  auto r = run_oitbench({"run", "oit", "--quick", "--set", "scene=house-opaque", "--set", "view=V1", "--set",
                          "technique=BASE-IS", "--set", "effects=self-shadowing", "--out", csv.string()});
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("does not declare effect 'self-shadowing'; it declares: opaque, transparency"),

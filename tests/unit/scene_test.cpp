@@ -130,7 +130,7 @@ TEST(Scene, EveryShippedSceneDeclaresItsEffects) {
     SceneDesc s = load_scene(entry.path().string());
     EXPECT_FALSE(s.effects.empty()) << entry.path();
   }
-  EXPECT_EQ(load_scene("house").effects, (std::vector<std::string>{"opaque", "transparency"}));
+  EXPECT_EQ(load_scene("house-opaque").effects, (std::vector<std::string>{"opaque", "transparency"}));
 }
 
 TEST(Scene, ModelScenesLoadThroughAssimp) {
