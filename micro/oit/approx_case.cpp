@@ -15,6 +15,7 @@
 #include "oit/image_io.hpp"
 #include "oit/reference.hpp"
 #include "oit/scene.hpp"
+#include "oit/shadow_map.hpp"
 #include "oit/storage_layout.hpp"
 #include "shaders/approx/bindings.h"
 
@@ -128,13 +129,19 @@ class ApproxCase final : public OitCase {
     // The planes back out of the perspective matrix (glm::perspective's layout).
     glm::mat4 pm = vp * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
+    shadow_ = make_self_shadowing(ctx, scene_, mesh, p);
+    if (shadow_) shadow_->build();  // the reference capture below shades with it
 
     // The fragments, once: the exact reference and every model work on these.
     size_t pixels = static_cast<size_t>(width_) * height_;
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
     auto capture = build_capture_programs(
-        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
-    for (const auto& prog : capture) set_view_proj(prog, vp);
+        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+        shading_defines(shadow_));
+    for (const auto& prog : capture) {
+      set_view_proj(prog, vp);
+      if (shadow_) shadow_->bind(prog.get());
+    }
     out_.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -148,6 +155,7 @@ class ApproxCase final : public OitCase {
     Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
     if (settings_.unguarded) d.push_back({"APPROX_UNGUARDED", ""});
     if (interlock) d.push_back({"SYNC_INTERLOCK", ""});
+    for (auto& x : shading_defines(shadow_)) d.push_back(x);
     if (arrays_) {
       std::string storage = p.get("storage");
       layout_ = StorageLayout::parse(storage == "interleaved" ? "interleaved-4x4-a4" : storage);
@@ -183,6 +191,9 @@ class ApproxCase final : public OitCase {
       blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
     }
+    if (shadow_)
+      for (const gl::Program* prog : {&insert_, &blend_})
+        if (*prog) shadow_->bind(prog->get());
     if (resolve_) {
       glProgramUniform3f(resolve_.get(), glGetUniformLocation(resolve_.get(), "background"), scene_.background.r,
                          scene_.background.g, scene_.background.b);
@@ -198,6 +209,11 @@ class ApproxCase final : public OitCase {
 
   void run(PassTimer& timer) override {
     using T = ApproxTechnique;
+    if (shadow_) {
+      shadow_->build(timer);  // shadow-sort, shadow-map
+      for (const gl::Program* prog : {&insert_, &blend_})
+        if (*prog) shadow_->bind(prog->get());
+    }
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     if (arrays_) {
@@ -350,6 +366,11 @@ class ApproxCase final : public OitCase {
                          " channel value(s) differ from the technique's CPU model by more "
                          "than 3/255; first: " +
                          first_off);
+    if (shadow_) {
+      auto shadow = shadow_->validate();
+      m.insert(shadow.metrics.begin(), shadow.metrics.end());
+      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
+    }
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;
@@ -375,6 +396,7 @@ class ApproxCase final : public OitCase {
   RenderTarget out_, accum_;
   FullscreenTriangle quad_;
   std::unique_ptr<GpuMesh> mesh_;
+  std::unique_ptr<OpacityShadowMap> shadow_;  // the self-shadowing effect, when the scene declares it
   std::unique_ptr<FragmentStorage> lists_;
   HostLists host_;
   ApproxSettings settings_;

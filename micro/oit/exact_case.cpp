@@ -27,6 +27,7 @@
 #include "oit/reference.hpp"
 #include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
+#include "oit/shadow_map.hpp"
 
 namespace oitbench::oit {
 
@@ -71,12 +72,15 @@ class ExactCase final : public OitCase {
     Mesh mesh = build_mesh(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full);
     mesh_ = std::make_unique<GpuMesh>(mesh);
     view_proj_ = view_projection(view, mesh, static_cast<float>(ctx.width()) / ctx.height());
+    shadow_ = make_self_shadowing(ctx, scene_, mesh, p);
+    if (shadow_) shadow_->build();  // the first capture below shades with it
     size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
     long long init = p.get_int("initial_pool");
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx,
                                    init > 0 ? static_cast<size_t>(init) : pixels * 4, bma_);
     capture_ = build_capture_programs(
-        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
+        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+        shading_defines(shadow_));
     set_view_projection(view_proj_);
 
     // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
@@ -137,6 +141,7 @@ class ExactCase final : public OitCase {
   unsigned max_frags() const override { return max_frags_; }
 
   void run(PassTimer& timer) override {
+    if (shadow_) shadow_->build(timer);  // shadow-sort, shadow-map
     target_.bind();
     {
       auto t = timer.pass("capture");
@@ -301,6 +306,11 @@ class ExactCase final : public OitCase {
           "likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
           "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" +
           fmt(loop_steps) + " per pixel");
+    if (shadow_) {
+      auto shadow = shadow_->validate();
+      m.insert(shadow.metrics.begin(), shadow.metrics.end());
+      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
+    }
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;
@@ -338,6 +348,8 @@ class ExactCase final : public OitCase {
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    if (shadow_)
+      for (const auto& prog : capture_) shadow_->bind(prog.get());
     int r = lists_->capture(ids(capture_), [&] { mesh_->draw(); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     return r;
@@ -459,6 +471,7 @@ class ExactCase final : public OitCase {
   RenderTarget target_;
   FullscreenTriangle quad_;
   std::unique_ptr<GpuMesh> mesh_;
+  std::unique_ptr<OpacityShadowMap> shadow_;  // the self-shadowing effect, when the scene declares it
   glm::mat4 view_proj_;
   std::unique_ptr<FragmentStorage> lists_;
   std::vector<gl::Program> capture_;  // one program per capture pass of the storage

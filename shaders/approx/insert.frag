@@ -20,11 +20,13 @@
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "nodes.glsl"
+#include "../oit/shade.glsl"
 #include "bindings.h"
 
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;
+in vec3 vWorld;
 uniform int zero;
 #if defined(SYNC_INTERLOCK)
 layout(pixel_interlock_ordered) in;
@@ -286,7 +288,7 @@ void insert(ivec2 p, vec4 ct, float z) {
 #endif
 
 void main() {
-  vec4 c = approx_fragment_colour(vColour, vUv, vSoft);
+  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
   ivec2 p = ivec2(gl_FragCoord.xy);
   float z = gl_FragCoord.z + oitbench_fault_hang(zero);
   vec4 ct = vec4(c.rgb * c.a, 1.0 - c.a);  // (premultiplied colour C, transmittance T)
