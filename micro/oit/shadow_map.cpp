@@ -16,7 +16,6 @@ namespace oitbench::oit {
 
 namespace {
 
-constexpr int kPrimitiveVertices = 3;  // triangles; a line list is the same with 2
 static_assert(sizeof(Vertex) % sizeof(float) == 0 && offsetof(Vertex, position) == 0,
               "slice_keys.comp reads oit::Vertex as floats, position first");
 constexpr int kVertexFloats = static_cast<int>(sizeof(Vertex) / sizeof(float));
@@ -38,7 +37,26 @@ gl::Buffer make_storage(GLsizeiptr bytes, const void* data = nullptr) {
 
 struct OpacityShadowMap::LightFragments {
   HostLists host;
-  size_t bytes = 0;
+};
+
+// One kind of primitive, `vertices` indices each, drawn as `mode`: its keys, its sort, its sorted
+// elements and one indirect draw per slice. The light capture numbers the primitives of all sets
+// in one sequence, a set's starting at `base`. A line list (Mesh line primitives) is one more set
+// of GL_LINES with 2 vertices; every pass below is written for any set.
+struct OpacityShadowMap::PrimitiveSet {
+  GLenum mode = GL_TRIANGLES;
+  int vertices = 3;
+  size_t count = 0, base = 0;
+  gl::Buffer indices, keys0, index0, keys[2], index[2], local, blocks, elements, bounds, commands;
+  gl::Program keys_prog, emit, bounds_prog, commands_prog;
+  std::vector<gl::Program> split;
+
+  const gl::Buffer& sorted_keys(int bits) const { return keys[(bits - 1) % 2]; }
+  const gl::Buffer& sorted_index(int bits) const { return index[(bits - 1) % 2]; }
+  size_t bytes(int slices) const {
+    const size_t n = count * sizeof(unsigned);
+    return 7 * n + (count / 256 + 2) * sizeof(unsigned) + 2 * vertices * n + 7 * slices * sizeof(unsigned);
+  }
 };
 
 OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, const Light& light, int slices,
@@ -47,8 +65,7 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
       slices_(slices),
       resolution_(resolution),
       slice_off_(ctx.fault() == kShadowSliceOffFault),
-      ambient_(light.ambient),
-      primitives_((mesh.indices.size() + mesh.opaque_indices.size()) / kPrimitiveVertices) {
+      ambient_(light.ambient) {
   if (slices_ < 2) throw std::invalid_argument("self-shadowing: at least 2 slices");
   while ((1 << bits_) < slices_) ++bits_;
   // The light's frustum: its axis through `target`, near and far planes around the mesh's bounding sphere.
@@ -65,16 +82,47 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
   light_view_proj_ =
       glm::perspective(glm::radians(light.fov_deg), 1.0f, near_, far_) * glm::lookAt(light.eye, light.target, light.up);
 
-  std::vector<unsigned> all(mesh.indices);
-  all.insert(all.end(), mesh.opaque_indices.begin(), mesh.opaque_indices.end());
   vertices_ = make_storage(static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(Vertex)), mesh.vertices.data());
-  indices_ = make_storage(static_cast<GLsizeiptr>(all.size() * sizeof(unsigned)), all.data());
-  const GLsizeiptr n = static_cast<GLsizeiptr>(primitives_ * sizeof(unsigned));
-  for (auto* b : {&keys0_, &index0_, &keys_[0], &keys_[1], &index_[0], &index_[1], &local_}) *b = make_storage(n);
-  blocks_ = make_storage(static_cast<GLsizeiptr>((primitives_ / 256 + 2) * sizeof(unsigned)));
-  elements_ = make_storage(kPrimitiveVertices * n);
-  bounds_ = make_storage(static_cast<GLsizeiptr>(2 * slices_ * sizeof(unsigned)));
-  commands_ = make_storage(static_cast<GLsizeiptr>(5 * slices_ * sizeof(unsigned)));
+  // Every primitive casts a shadow: the transparent triangles, then the opaque ones.
+  std::vector<unsigned> triangles(mesh.indices);
+  triangles.insert(triangles.end(), mesh.opaque_indices.begin(), mesh.opaque_indices.end());
+  std::vector<std::pair<GLenum, const std::vector<unsigned>*>> lists = {{GL_TRIANGLES, &triangles}};
+  size_t base = 0;
+  for (const auto& [mode, list] : lists) {
+    PrimitiveSet set;
+    set.mode = mode;
+    set.vertices = mode == GL_LINES ? 2 : 3;
+    set.count = list->size() / set.vertices;
+    set.base = base;
+    base += set.count;
+    if (!set.count) continue;
+    set.indices = make_storage(static_cast<GLsizeiptr>(list->size() * sizeof(unsigned)), list->data());
+    const GLsizeiptr n = static_cast<GLsizeiptr>(set.count * sizeof(unsigned));
+    for (auto* b : {&set.keys0, &set.index0, &set.keys[0], &set.keys[1], &set.index[0], &set.index[1], &set.local})
+      *b = make_storage(n);
+    set.blocks = make_storage(static_cast<GLsizeiptr>((set.count / 256 + 2) * sizeof(unsigned)));
+    set.elements = make_storage(set.vertices * n);
+    set.bounds = make_storage(static_cast<GLsizeiptr>(2 * slices_ * sizeof(unsigned)));
+    set.commands = make_storage(static_cast<GLsizeiptr>(5 * slices_ * sizeof(unsigned)));
+    const Defines primitive = {{"INDEXED_PRIMITIVES", ""},
+                               {"PRIMITIVE_VERTICES", std::to_string(set.vertices)},
+                               {"VERTEX_FLOATS", std::to_string(kVertexFloats)},
+                               {"SLICES", std::to_string(slices_)}};
+    set.keys_prog = ctx.build({{GL_COMPUTE_SHADER, "lines/slice_keys.comp"}}, primitive);
+    const GLuint keys = set.keys_prog.get();
+    glProgramUniformMatrix4fv(keys, glGetUniformLocation(keys, "viewProj"), 1, GL_FALSE, &light_view_proj_[0][0]);
+    glProgramUniform1f(keys, glGetUniformLocation(keys, "nearDistance"), near_);
+    glProgramUniform1f(keys, glGetUniformLocation(keys, "farDistance"), far_);
+    for (const char* phase : {"PHASE_LOCAL", "PHASE_BLOCKS", "PHASE_SCATTER"})
+      set.split.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
+    set.emit = ctx.build({{GL_COMPUTE_SHADER, "lines/emit_indices.comp"}}, primitive);
+    Defines bounds = primitive, commands = primitive;
+    bounds.emplace_back("PHASE_BOUNDS", "");
+    commands.emplace_back("PHASE_COMMANDS", "");
+    set.bounds_prog = ctx.build({{GL_COMPUTE_SHADER, "shadow/slice_ranges.comp"}}, bounds);
+    set.commands_prog = ctx.build({{GL_COMPUTE_SHADER, "shadow/slice_ranges.comp"}}, commands);
+    sets_.push_back(std::move(set));
+  }
 
   vao_ = gl::make_vertex_array();  // gpu_mesh.cpp's layout, for shaders/oit/capture.vert
   GLuint vao = vao_.get();
@@ -96,24 +144,6 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
   for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
     glTextureParameteri(map_.get(), wrap, GL_CLAMP_TO_EDGE);
   fbo_ = gl::make_framebuffer();
-
-  const Defines primitive = {{"INDEXED_PRIMITIVES", ""},
-                             {"PRIMITIVE_VERTICES", std::to_string(kPrimitiveVertices)},
-                             {"VERTEX_FLOATS", std::to_string(kVertexFloats)},
-                             {"SLICES", std::to_string(slices_)}};
-  keys_prog_ = ctx.build({{GL_COMPUTE_SHADER, "lines/slice_keys.comp"}}, primitive);
-  glProgramUniformMatrix4fv(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "viewProj"), 1, GL_FALSE,
-                            &light_view_proj_[0][0]);
-  glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "nearDistance"), near_);
-  glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "farDistance"), far_);
-  for (const char* phase : {"PHASE_LOCAL", "PHASE_BLOCKS", "PHASE_SCATTER"})
-    split_.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
-  emit_ = ctx.build({{GL_COMPUTE_SHADER, "lines/emit_indices.comp"}}, primitive);
-  Defines bounds = primitive, commands = primitive;
-  bounds.emplace_back("PHASE_BOUNDS", "");
-  commands.emplace_back("PHASE_COMMANDS", "");
-  bounds_prog_ = ctx.build({{GL_COMPUTE_SHADER, "shadow/slice_ranges.comp"}}, bounds);
-  commands_prog_ = ctx.build({{GL_COMPUTE_SHADER, "shadow/slice_ranges.comp"}}, commands);
   accumulate_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "shadow/accumulate.frag"}}, {});
   glProgramUniformMatrix4fv(accumulate_.get(), glGetUniformLocation(accumulate_.get(), "viewProj"), 1, GL_FALSE,
                             &light_view_proj_[0][0]);
@@ -123,16 +153,15 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
 OpacityShadowMap::~OpacityShadowMap() = default;
 
 size_t OpacityShadowMap::bytes() const {
-  size_t n = primitives_ * sizeof(unsigned);
-  return 7 * n + (primitives_ / 256 + 2) * sizeof(unsigned) + kPrimitiveVertices * n +
-         7 * static_cast<size_t>(slices_) * sizeof(unsigned) +
-         static_cast<size_t>(resolution_) * resolution_ * (slices_ + 1) * sizeof(float);
+  size_t b = static_cast<size_t>(resolution_) * resolution_ * (slices_ + 1) * sizeof(float);
+  for (const auto& set : sets_) b += set.bytes(slices_);
+  return b;
 }
 
 void OpacityShadowMap::build(PassTimer& timer) {
   {
     auto t = timer.pass(kShadowSortPass);
-    sort_primitives();
+    for (auto& set : sets_) sort_primitives(set);
   }
   auto t = timer.pass(kShadowMapPass);
   draw_map();
@@ -143,53 +172,51 @@ void OpacityShadowMap::build() {
   build(untimed);
 }
 
-void OpacityShadowMap::sort_primitives() {
-  const GLuint count = static_cast<GLuint>(primitives_), groups = (count + 255) / 256;
+void OpacityShadowMap::sort_primitives(PrimitiveSet& set) {
+  const GLuint count = static_cast<GLuint>(set.count), groups = (count + 255) / 256;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, keys0_.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, index0_.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, indices_.get());
-  glUseProgram(keys_prog_.get());
-  glUniform1ui(glGetUniformLocation(keys_prog_.get(), "segments"), count);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, set.keys0.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, set.index0.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, set.indices.get());
+  glUseProgram(set.keys_prog.get());
+  glUniform1ui(glGetUniformLocation(set.keys_prog.get(), "segments"), count);
   glDispatchCompute(groups, 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   for (int bit = 0; bit < bits_; ++bit) {  // the lines experiment's rounds (micro/experiments/lines.cpp)
-    const gl::Buffer& kin = bit == 0 ? keys0_ : keys_[(bit + 1) % 2];
-    const gl::Buffer& iin = bit == 0 ? index0_ : index_[(bit + 1) % 2];
+    const gl::Buffer& kin = bit == 0 ? set.keys0 : set.keys[(bit + 1) % 2];
+    const gl::Buffer& iin = bit == 0 ? set.index0 : set.index[(bit + 1) % 2];
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, kin.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, iin.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, keys_[bit % 2].get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, index_[bit % 2].get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, local_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, blocks_.get());
-    for (size_t phase = 0; phase < split_.size(); ++phase) {
-      glUseProgram(split_[phase].get());
-      glUniform1ui(glGetUniformLocation(split_[phase].get(), "count"), count);
-      glUniform1ui(glGetUniformLocation(split_[phase].get(), "bit"), static_cast<GLuint>(bit));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, set.keys[bit % 2].get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, set.index[bit % 2].get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, set.local.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, set.blocks.get());
+    for (size_t phase = 0; phase < set.split.size(); ++phase) {
+      glUseProgram(set.split[phase].get());
+      glUniform1ui(glGetUniformLocation(set.split[phase].get(), "count"), count);
+      glUniform1ui(glGetUniformLocation(set.split[phase].get(), "bit"), static_cast<GLuint>(bit));
       glDispatchCompute(phase == 1 ? 1 : groups, 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   }
-  const gl::Buffer& sorted_keys = keys_[(bits_ - 1) % 2];
-  const gl::Buffer& sorted_index = index_[(bits_ - 1) % 2];
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sorted_index.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, elements_.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, indices_.get());
-  glUseProgram(emit_.get());
-  glUniform1ui(glGetUniformLocation(emit_.get(), "segments"), count);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, set.sorted_index(bits_).get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, set.elements.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, set.indices.get());
+  glUseProgram(set.emit.get());
+  glUniform1ui(glGetUniformLocation(set.emit.get(), "segments"), count);
   glDispatchCompute(groups, 1, 1);
   // Each slice's range of the sorted elements as an indirect draw.
   const GLuint zero = 0;
-  glClearNamedBufferData(bounds_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sorted_keys.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bounds_.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, commands_.get());
+  glClearNamedBufferData(set.bounds.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, set.sorted_keys(bits_).get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, set.bounds.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, set.commands.get());
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  glUseProgram(bounds_prog_.get());
-  glUniform1ui(glGetUniformLocation(bounds_prog_.get(), "count"), count);
+  glUseProgram(set.bounds_prog.get());
+  glUniform1ui(glGetUniformLocation(set.bounds_prog.get(), "count"), count);
   glDispatchCompute(groups, 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  glUseProgram(commands_prog_.get());
+  glUseProgram(set.commands_prog.get());
   glDispatchCompute((static_cast<GLuint>(slices_) + 63) / 64, 1, 1);
   glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
@@ -205,15 +232,17 @@ void OpacityShadowMap::draw_map() {
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
   glUseProgram(accumulate_.get());
-  glVertexArrayElementBuffer(vao_.get(), elements_.get());
   glBindVertexArray(vao_.get());
-  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_.get());
   for (int slice = 0; slice < slices_; ++slice) {
     // Slice k lands in layer k + 1: layer 0 is what lies in front of the first slice, nothing.
     const int layer = std::min(slice + (slice_off_ ? 2 : 1), slices_);
     glNamedFramebufferTextureLayer(fbo_.get(), GL_COLOR_ATTACHMENT0, map_.get(), 0, layer);
-    glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(static_cast<uintptr_t>(slice) * 5 * sizeof(unsigned)));
+    for (const auto& set : sets_) {
+      glVertexArrayElementBuffer(vao_.get(), set.elements.get());
+      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, set.commands.get());
+      glDrawElementsIndirect(set.mode, GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(static_cast<uintptr_t>(slice) * 5 * sizeof(unsigned)));
+    }
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   glDisable(GL_BLEND);
@@ -246,14 +275,17 @@ OpacityShadowMap::LightFragments& OpacityShadowMap::light_fragments() {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glVertexArrayElementBuffer(vao_.get(), indices_.get());  // every primitive, numbered as the keys are
   lists.capture(ids(programs), [&] {
     glBindVertexArray(vao_.get());
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(primitives_ * kPrimitiveVertices), GL_UNSIGNED_INT, nullptr);
+    for (const auto& set : sets_) {  // every primitive, numbered as the keys are
+      for (const auto& p : programs)
+        glProgramUniform1ui(p.get(), glGetUniformLocation(p.get(), "primitiveBase"), static_cast<GLuint>(set.base));
+      glVertexArrayElementBuffer(vao_.get(), set.indices.get());
+      glDrawElements(set.mode, static_cast<GLsizei>(set.count * set.vertices), GL_UNSIGNED_INT, nullptr);
+    }
   });
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   light_->host = lists.read_back();
-  light_->bytes = lists.bytes();
   return *light_;
 }
 
@@ -261,21 +293,32 @@ ShadowCheck OpacityShadowMap::validate() {
   ShadowCheck check;
   auto& m = check.metrics;
   m["shadow_map_bytes"] = std::to_string(bytes());
-  const size_t n = primitives_;
   const int layers = slices_ + 1;
   const size_t texels = static_cast<size_t>(resolution_) * resolution_;
 
-  // The sort: the GPU's own keys, sorted stably on the CPU, must give exactly the GPU's order.
-  std::vector<unsigned> keys(n), order(n), gpu(n);
-  glGetNamedBufferSubData(keys0_.get(), 0, static_cast<GLsizeiptr>(n * sizeof(unsigned)), keys.data());
-  glGetNamedBufferSubData(index_[(bits_ - 1) % 2].get(), 0, static_cast<GLsizeiptr>(n * sizeof(unsigned)), gpu.data());
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return keys[a] < keys[b]; });
-  auto wrong = std::mismatch(order.begin(), order.end(), gpu.begin());
-  if (wrong.first != order.end())
-    check.problems.push_back("shadow-sort: the radix sort differs from a stable CPU sort at position " +
-                             std::to_string(wrong.first - order.begin()) + " (primitive " +
-                             std::to_string(*wrong.second) + ", expected " + std::to_string(*wrong.first) + ")");
+  // The sort: each set's GPU keys, sorted stably on the CPU, must give exactly the GPU's order.
+  // `keys` holds every primitive's key in the light capture's numbering (a set's from its base).
+  std::vector<unsigned> keys;
+  for (const auto& set : sets_) {
+    const size_t n = set.count;
+    std::vector<unsigned> own(n), order(n), gpu(n);
+    glGetNamedBufferSubData(set.keys0.get(), 0, static_cast<GLsizeiptr>(n * sizeof(unsigned)), own.data());
+    glGetNamedBufferSubData(set.sorted_index(bits_).get(), 0, static_cast<GLsizeiptr>(n * sizeof(unsigned)),
+                            gpu.data());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return own[a] < own[b]; });
+    auto wrong = std::mismatch(order.begin(), order.end(), gpu.begin());
+    if (wrong.first != order.end())
+      check.problems.push_back("shadow-sort: the radix sort differs from a stable CPU sort at position " +
+                               std::to_string(wrong.first - order.begin()) + " (primitive " +
+                               std::to_string(*wrong.second) + ", expected " + std::to_string(*wrong.first) + ")");
+    keys.resize(set.base);
+    keys.insert(keys.end(), own.begin(), own.end());
+  }
+  const size_t n = keys.size();
+  if (n >= (1u << 24))
+    check.problems.push_back("shadow light capture: " + std::to_string(n) +
+                             " primitives; the capture numbers at most 2^24 (24 bits in a fragment's colour)");
 
   // The CPU map from the same slices: each light fragment's optical depth into its primitive's layer.
   const auto& host = light_fragments().host;

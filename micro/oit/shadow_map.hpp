@@ -58,7 +58,7 @@ class OpacityShadowMap {
 
   int slices() const { return slices_; }
   int resolution() const { return resolution_; }
-  size_t bytes() const;  // GPU memory the timed passes use (map, keys, indices, commands)
+  size_t bytes() const;  // GPU memory of the timed passes: the map; per set indices, keys, sort, elements, draws
   const glm::mat4& light_view_projection() const { return light_view_proj_; }
 
   // After a build(): the checks and the shadow_* metrics (untimed; captures from the light once).
@@ -66,7 +66,8 @@ class OpacityShadowMap {
 
  private:
   struct LightFragments;
-  void sort_primitives();
+  struct PrimitiveSet;  // one kind of primitive (triangles; lines to come) with its own sort
+  void sort_primitives(PrimitiveSet& set);
   void draw_map();
   LightFragments& light_fragments();
 
@@ -74,15 +75,14 @@ class OpacityShadowMap {
   int slices_, resolution_, bits_ = 0;
   bool slice_off_;
   float ambient_;
-  size_t primitives_;
   glm::mat4 light_view_proj_{1.0f};
   float near_ = 0, far_ = 1;  // light-view distances the slices divide
-  gl::Buffer vertices_, indices_, keys0_, index0_, keys_[2], index_[2], local_, blocks_, elements_, bounds_, commands_;
+  gl::Buffer vertices_;
+  std::vector<PrimitiveSet> sets_;
   gl::VertexArray vao_;
   gl::Texture map_;
   gl::Framebuffer fbo_;
-  gl::Program keys_prog_, emit_, bounds_prog_, commands_prog_, accumulate_, prefix_, light_capture_;
-  std::vector<gl::Program> split_;
+  gl::Program accumulate_, prefix_;
   std::unique_ptr<LightFragments> light_;  // captured at the first validate()
 };
 
