@@ -7,6 +7,7 @@ median time of its two passes, shadow-sort and shadow-map (right). One figure; o
 scene, technique and shadow_resolution that the rows hold. Invalid rows are left out.
 
   scripts/shadow_plot.py results.csv [more.csv] --out shadow.png
+  scripts/shadow_plot.py results.csv --table     # the Markdown table docs/effects.md holds
 """
 import argparse
 import os
@@ -24,6 +25,38 @@ import matplotlib.pyplot as plt  # noqa: E402
 import oitcsv  # noqa: E402
 
 PASSES = ("shadow-sort", "shadow-map")  # micro/oit/shadow_map.hpp: kShadowSortPass, kShadowMapPass
+
+
+TABLE_HEADER = ("| scene | technique | shadow_resolution | shadow_slices | shadow_rmse | shadow_max_abs_error "
+                "| shadow-sort ms | shadow-map ms | capture ms | shadow_map_bytes |")
+
+
+def table_rows(rows):
+    """The Markdown table of the ok rows: one line per case, medians of its passes."""
+    cases = {}
+    for r in rows:
+        slices = oitcsv.to_float(r.get("shadow_slices"))
+        if r.get("experiment") != "oit" or slices is None or not oitcsv.is_ok(r):
+            continue
+        key = (os.path.basename(r.get("scene", "")), r.get("technique", ""),
+               int(oitcsv.to_float(r.get("shadow_resolution")) or 0), int(slices))
+        case = cases.setdefault(key, {"rmse": r.get("shadow_rmse"), "max": r.get("shadow_max_abs_error"),
+                                      "bytes": oitcsv.to_float(r.get("shadow_map_bytes"))})
+        case[r.get("pass")] = oitcsv.to_float(r.get("median_ms"))
+
+    def ms(v):
+        return "" if v is None else f"{v:.0f}"
+
+    def num(v):
+        x = oitcsv.to_float(v)
+        return "" if x is None else f"{x:.3g}"
+
+    lines = [TABLE_HEADER, "|" + "---|" * TABLE_HEADER.count(" | ") + "---|"]
+    for (scene, technique, res, slices), c in sorted(cases.items()):
+        size = "" if c["bytes"] is None else f"{c['bytes'] / 1e6:.1f} M"
+        lines.append(f"| {scene} | {technique} | {res} | {slices} | {num(c['rmse'])} | {num(c['max'])} | "
+                     f"{ms(c.get('shadow-sort'))} | {ms(c.get('shadow-map'))} | {ms(c.get('capture'))} | {size} |")
+    return lines
 
 
 def series(rows):
@@ -76,8 +109,11 @@ def plot(data):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("csv", nargs="+", help="oit summary CSV(s)")
-    ap.add_argument("--out", required=True, help="the figure (PNG, SVG or PDF by its extension)")
+    ap.add_argument("--out", help="the figure (PNG, SVG or PDF by its extension)")
+    ap.add_argument("--table", action="store_true", help="print the Markdown table of the rows instead")
     args = ap.parse_args(argv)
+    if not args.out and not args.table:
+        ap.error("give --out FIGURE or --table")
     rows = []
     try:
         for path in args.csv:
@@ -90,6 +126,9 @@ def main(argv=None):
         print("shadow_plot.py: no valid oit rows with shadow_slices (a scene declaring self-shadowing)",
               file=sys.stderr)
         return 2
+    if args.table:
+        print("\n".join(table_rows(rows)))
+        return 0
     plot(data).savefig(args.out, dpi=120)
     print(args.out)
     return 0

@@ -1,5 +1,6 @@
 """shadow_plot.py: the self-shadowing figure from the committed measurement (results/self-shadowing/),
-invalid rows left out, and exit 2 when no row has the effect."""
+invalid rows left out, exit 2 when no row has the effect, and docs/effects.md's table is what the
+script makes of the committed CSV (regenerate it with --table after a new measurement)."""
 import csv
 import os
 import unittest
@@ -8,6 +9,7 @@ from support import TempDirTest, run_script
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MEASURED = os.path.join(REPO, "results", "self-shadowing", "hairball-lit-128.csv")
+DOC = os.path.join(REPO, "docs", "effects.md")
 
 
 class ShadowPlot(TempDirTest):
@@ -15,6 +17,15 @@ class ShadowPlot(TempDirTest):
         out = self.path("shadow.png")
         run_script("shadow_plot.py", MEASURED, "--out", out)
         self.assertPng(out)
+
+    def test_the_docs_table_is_generated_from_the_committed_csv(self):
+        table = run_script("shadow_plot.py", MEASURED, "--table").stdout
+        with open(DOC, encoding="utf-8") as f:
+            doc = f.read()
+        begin = doc.index("-->\n", doc.index("<!-- generated: scripts/shadow_plot.py")) + len("-->\n")
+        end = doc.index("<!-- end of generated table -->")
+        self.assertEqual(doc[begin:end], table, "docs/effects.md's table is stale; regenerate it with\n"
+                         "  scripts/shadow_plot.py results/self-shadowing/hairball-lit-128.csv --table")
 
     def test_rows_without_the_effect_or_invalid_exit_2(self):
         with open(MEASURED, newline="", encoding="utf-8") as f:
