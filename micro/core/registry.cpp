@@ -70,9 +70,11 @@ std::vector<ParamSpec> Registry::framework_params() {
       "fault injection for testing the framework: wrong-result (the shader perturbs its output, so the "
       "validator must fail), compile-error, hang (an endless shader loop for the watchdog), lose-fragment (oit's "
       "capture drops the fragments of the diagonal, so its capture checks must fail), no-opaque-depth (oit's "
-      "geometry passes skip the opaque effect's depth test, so its occlusion checks must fail)";
+      "geometry passes skip the opaque effect's depth test, so its occlusion checks must fail), shadow-slice-off "
+      "(the self-shadowing opacity map draws every slice one layer too far, so its map check must fail)";
   fault.defaults = {"none"};
-  fault.allowed = {"none", "wrong-result", "compile-error", "hang", "lose-fragment", "no-opaque-depth"};
+  fault.allowed = {"none",          "wrong-result",    "compile-error",   "hang",
+                   "lose-fragment", "no-opaque-depth", "shadow-slice-off"};
   ParamSpec seed;
   seed.name = "seed";
   seed.description = "seed of the case's random inputs";

@@ -94,6 +94,24 @@ class OitExperiment final : public Experiment {
                       {"PPLL"},
                       {},
                       capture_storage_names()};
+    // The self-shadowing effect (micro/oit/shadow_map.hpp): read only where the scene declares it.
+    ParamSpec shadow_slices{"shadow_slices",
+                            "self-shadowing: depth slices of the opacity shadow map (scenes whose effects hold "
+                            "self-shadowing; others run no shadow pass)",
+                            {"64"},
+                            {},
+                            {},
+                            ParamSpec::Kind::Integer,
+                            2,
+                            1024};
+    ParamSpec shadow_resolution{"shadow_resolution",
+                                "self-shadowing: the opacity shadow map's width and height in texels",
+                                {"256"},
+                                {"128"},
+                                {},
+                                ParamSpec::Kind::Integer,
+                                8,
+                                4096};
     // Each technique parameter is scoped to the techniques that read it, so a row carries only its own.
     const auto& exact = exact_technique_names();
     auto exact_but = [&](const std::string& skip) {
@@ -107,8 +125,8 @@ class OitExperiment final : public Experiment {
     max_frags.only_when("technique", exact_but("CPU-NATIVE"));
     cs_group.only_when("technique", {"CS-IS", "CS-IMS", "CS-RBS-L"});
     auto_cache.only_when("technique", {"BMA-AUTO"});
-    std::vector<ParamSpec> ps = {scene, view, technique, effects_param(), capture,   detail,
-                                 block, pool, max_frags, cs_group,        auto_cache};
+    std::vector<ParamSpec> ps = {scene, view,      technique, effects_param(), capture,       detail,           block,
+                                 pool,  max_frags, cs_group,  auto_cache,      shadow_slices, shadow_resolution};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     return ps;
   }
@@ -140,7 +158,17 @@ class OitExperiment final : public Experiment {
         {"capped_updates", T::Integer, "", "insertions that gave up on the spinlock after SPIN_CAP tries"},
         {"flicker", T::Number, "", "per-pixel variance across flicker_runs frames, mean over pixels"},
         {"flicker_max", T::Number, "", "its largest pixel"},
-        {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"}};
+        {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"},
+        // self-shadowing (micro/oit/shadow_map.cpp), only where the scene declares it
+        {"shadow_rmse", T::Number, "",
+         "self-shadowing: rmse of the opacity map's transmittance against the deep shadow map's (exact) at every "
+         "fragment seen from the light"},
+        {"shadow_max_abs_error", T::Number, "", "self-shadowing: the largest of those transmittance errors"},
+        {"shadow_map_max_diff", T::Number, "",
+         "self-shadowing: largest optical-depth difference between the GPU map and the CPU map of the same slices"},
+        {"shadow_light_fragments", T::Integer, "", "self-shadowing: fragments seen from the light"},
+        {"shadow_map_bytes", T::Integer, "bytes",
+         "self-shadowing: GPU memory of the map (3D texture) and of its primitive sort"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());
     for (auto& x : image_error_metrics()) m.push_back(std::move(x));

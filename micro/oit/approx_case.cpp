@@ -140,8 +140,12 @@ class ApproxCase final : public OitCase {
     size_t pixels = static_cast<size_t>(width_) * height_;
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
     auto capture = build_capture_programs(
-        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
-    for (const auto& prog : capture) set_view_proj(prog, vp);
+        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+        passes_.geometry_defines());
+    for (const auto& prog : capture) {
+      set_view_proj(prog, vp);
+      passes_.bind_geometry(prog.get());
+    }
     out_.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -155,7 +159,7 @@ class ApproxCase final : public OitCase {
     Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
     if (settings_.unguarded) d.push_back({"APPROX_UNGUARDED", ""});
     if (interlock) d.push_back({"SYNC_INTERLOCK", ""});
-    for (auto& x : passes_.defines()) d.push_back(x);
+    for (auto& x : passes_.geometry_defines()) d.push_back(x);
     if (arrays_) {
       std::string storage = p.get("storage");
       layout_ = StorageLayout::parse(storage == "interleaved" ? "interleaved-4x4-a4" : storage);
@@ -194,9 +198,7 @@ class ApproxCase final : public OitCase {
   }
 
   GLuint opaque_texture() const override { return passes_.opaque_texture(); }
-  std::map<std::string, std::string> resolved_params() const override {
-    return {{"effects", join_effects(passes_.effects())}};
-  }
+  std::map<std::string, std::string> resolved_params() const override { return passes_.resolved_params(); }
   void set_view_projection(const glm::mat4& view_proj) override {
     passes_.set_view_projection(view_proj);
     for (const gl::Program* prog : {&insert_, &blend_})
@@ -208,6 +210,8 @@ class ApproxCase final : public OitCase {
   void run(PassTimer& timer) override {
     using T = ApproxTechnique;
     passes_.run_before(timer);
+    for (const gl::Program* prog : {&insert_, &blend_})
+      if (*prog) passes_.bind_geometry(prog->get());
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     if (!passes_.transparency()) {  // nothing transparent: the image is the backdrop
@@ -372,6 +376,11 @@ class ApproxCase final : public OitCase {
                          " channel value(s) differ from the technique's CPU model by more "
                          "than 3/255; first: " +
                          first_off);
+    {
+      auto shadow = passes_.validate_shadow();
+      m.insert(shadow.metrics.begin(), shadow.metrics.end());
+      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
+    }
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;

@@ -75,7 +75,8 @@ class ExactCase final : public OitCase {
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx,
                                    init > 0 ? static_cast<size_t>(init) : pixels * 4, bma_);
     capture_ = build_capture_programs(
-        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}});
+        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+        passes_.geometry_defines());
     set_view_projection(view_proj_);
 
     // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
@@ -116,9 +117,7 @@ class ExactCase final : public OitCase {
   }
 
   GLuint opaque_texture() const override { return passes_.opaque_texture(); }
-  std::map<std::string, std::string> resolved_params() const override {
-    return {{"effects", join_effects(passes_.effects())}};
-  }
+  std::map<std::string, std::string> resolved_params() const override { return passes_.resolved_params(); }
   void set_view_projection(const glm::mat4& view_proj) override {
     view_proj_ = view_proj;
     passes_.set_view_projection(view_proj);
@@ -332,6 +331,11 @@ class ExactCase final : public OitCase {
           "likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
           "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" +
           fmt(loop_steps) + " per pixel");
+    {
+      auto shadow = passes_.validate_shadow();
+      m.insert(shadow.metrics.begin(), shadow.metrics.end());
+      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
+    }
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;
@@ -375,6 +379,7 @@ class ExactCase final : public OitCase {
       glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    for (const auto& prog : capture_) passes_.bind_geometry(prog.get());
     int r = lists_->capture(ids(capture_), [&] { passes_.transparent().draw(); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     passes_.end_geometry();

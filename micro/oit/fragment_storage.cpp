@@ -37,11 +37,12 @@ std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, cons
 }
 
 std::vector<gl::Program> build_capture_programs(const FragmentStorage& storage, const CaseContext& ctx,
-                                                const std::vector<ShaderStage>& stages) {
+                                                const std::vector<ShaderStage>& stages, const Defines& extra) {
   std::vector<gl::Program> programs;
   for (const Defines& pass : storage.capture_passes()) {
     Defines d = storage.defines();
     d.insert(d.end(), pass.begin(), pass.end());
+    d.insert(d.end(), extra.begin(), extra.end());
     programs.push_back(ctx.build(stages, d));
   }
   return programs;

@@ -70,9 +70,10 @@ TexelBuffer make_texel_buffer(size_t texels, GLenum format, size_t texel_bytes, 
 std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,
                                                        bool with_counts);
 
-// The capture programs of `storage` from `stages` (a fragment shader that calls store_fragment()).
+// The capture programs of `storage` from `stages` (a fragment shader that calls store_fragment()),
+// with `extra` defines (an effect's, e.g. OpacityShadowMap::defines()).
 std::vector<gl::Program> build_capture_programs(const FragmentStorage& storage, const CaseContext& ctx,
-                                                const std::vector<ShaderStage>& stages);
+                                                const std::vector<ShaderStage>& stages, const Defines& extra = {});
 std::vector<GLuint> ids(const std::vector<gl::Program>& programs);
 
 }  // namespace oitbench::oit

@@ -76,13 +76,19 @@ ScenePasses::ScenePasses(const ParamSet& p, CaseContext& ctx)
   }
   const bool opaque = has("opaque");
   mesh_ = build_mesh(scene_, view_, p.get("detail") == "small" ? Detail::Small : Detail::Full, opaque);
+  // Every primitive casts its shadow, whatever else runs; built once now for the first capture.
+  if (has("self-shadowing")) {
+    shadow_ = make_self_shadowing(ctx, scene_, mesh_, p);
+    if (shadow_) shadow_->build();
+  }
   if (!has("transparency")) mesh_.indices.clear();  // nothing transparent is drawn
   transparent_ = std::make_unique<GpuMesh>(mesh_);
   view_proj_ = oit::view_projection(view_, mesh_, static_cast<float>(width_) / height_);
   if (opaque) {
     opaque_ = std::make_unique<Opaque>();
     opaque_->mesh = std::make_unique<GpuMesh>(mesh_, mesh_.opaque_indices);
-    opaque_->program = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/opaque.frag"}}, {});
+    opaque_->program = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/opaque.frag"}},
+                                 geometry_defines());
     opaque_->fbo = gl::make_framebuffer();
     opaque_->colour = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(opaque_->colour.get(), 1, GL_RGBA32F, width_, height_);
@@ -108,6 +114,7 @@ void ScenePasses::set_view_projection(const glm::mat4& view_proj) {
 }
 
 void ScenePasses::run_before(PassTimer& timer) {
+  if (shadow_) shadow_->build(timer);  // shadow-sort, shadow-map
   if (!opaque_) return;
   auto t = timer.pass("opaque");
   draw_opaque();
@@ -125,6 +132,7 @@ void ScenePasses::draw_opaque() {
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
+  bind_geometry(opaque_->program.get());
   glUseProgram(opaque_->program.get());
   opaque_->mesh->draw();
   glDisable(GL_DEPTH_TEST);
@@ -140,6 +148,24 @@ void ScenePasses::bind_backdrop(GLuint program) const {
                      scene_.background.b);
   if (!opaque_) return;
   glBindTextureUnit(OIT_BACKDROP_UNIT, opaque_->colour.get());
+}
+
+Defines ScenePasses::geometry_defines() const {
+  Defines d = shading_defines(shadow_);
+  for (auto& x : defines()) d.push_back(x);
+  return d;
+}
+
+void ScenePasses::bind_geometry(GLuint program) const {
+  if (shadow_) shadow_->bind(program);
+}
+
+ShadowCheck ScenePasses::validate_shadow() { return shadow_ ? shadow_->validate() : ShadowCheck{}; }
+
+std::map<std::string, std::string> ScenePasses::resolved_params() const {
+  std::map<std::string, std::string> r = {{"effects", join_effects(effects_)}};
+  if (!shadow_) r["shadow_slices"] = r["shadow_resolution"] = "";
+  return r;
 }
 
 Defines ScenePasses::depth_sampler_defines() const {

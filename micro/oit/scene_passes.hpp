@@ -10,6 +10,7 @@
 //   self-shadowing  the shadow map's passes (micro/oit/shadow_map.hpp)
 // Without the opaque effect, opaque materials are captured like glass at alpha 1.
 #include <glm/glm.hpp>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "oit/gpu_mesh.hpp"
 #include "oit/reference.hpp"
 #include "oit/scene.hpp"
+#include "oit/shadow_map.hpp"
 
 namespace oitbench::oit {
 
@@ -59,6 +61,17 @@ class ScenePasses {
 
   // For every technique's shaders (shaders/oit/backdrop.glsl): OPAQUE_BACKDROP with the opaque effect.
   Defines defines() const;
+  // For the programs that shade scene fragments (shaders/oit/shade.glsl): SELF_SHADOWING with
+  // the self-shadowing effect, plus defines().
+  Defines geometry_defines() const;
+  // Before a geometry pass: the shadow map and its lookup's uniforms for `program` (a program
+  // built with geometry_defines()); no-op without the effect.
+  void bind_geometry(GLuint program) const;
+  // The self-shadowing checks and shadow_* metrics (micro/oit/shadow_map.hpp); empty without it.
+  ShadowCheck validate_shadow();
+  bool self_shadowing() const { return shadow_ != nullptr; }
+  // The parameters of effects that did not run, emptied for the rows (like a scoped parameter).
+  std::map<std::string, std::string> resolved_params() const;
   // defines() plus OPAQUE_DEPTH_SAMPLER: for a technique whose shaders call opaque_hides().
   Defines depth_sampler_defines() const;
   // Sets `background` and binds the opaque colour at its unit (effects.h).
@@ -97,6 +110,7 @@ class ScenePasses {
     gl::Texture colour, depth;  // RGBA32F; DEPTH32F_STENCIL8 (float: the CPU compares the same values)
   };
   std::unique_ptr<Opaque> opaque_;
+  std::unique_ptr<OpacityShadowMap> shadow_;  // the self-shadowing effect
 };
 
 }  // namespace oitbench::oit

@@ -4,12 +4,14 @@
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "visibility.glsl"
+#include "../oit/shade.glsl"
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;
+in vec3 vWorld;
 layout(location = 0) out vec4 fragColour;
 void main() {
-  vec4 c = approx_fragment_colour(vColour, vUv, vSoft);
+  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
   float w = c.a * visibility(ivec2(gl_FragCoord.xy), gl_FragCoord.z);
   fragColour = vec4(c.rgb * w, w);
 }

@@ -20,6 +20,7 @@
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "nodes.glsl"
+#include "../oit/shade.glsl"
 #include "bindings.h"
 // The opaque effect's depth test must come before the node stores (a hidden fragment is never
 // inserted); without a depth attachment this changes nothing.
@@ -28,6 +29,7 @@ layout(early_fragment_tests) in;
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;
+in vec3 vWorld;
 uniform int zero;
 #if defined(SYNC_INTERLOCK)
 layout(pixel_interlock_ordered) in;
@@ -289,7 +291,7 @@ void insert(ivec2 p, vec4 ct, float z) {
 #endif
 
 void main() {
-  vec4 c = approx_fragment_colour(vColour, vUv, vSoft);
+  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
   ivec2 p = ivec2(gl_FragCoord.xy);
   float z = gl_FragCoord.z + oitbench_fault_hang(zero);
   vec4 ct = vec4(c.rgb * c.a, 1.0 - c.a);  // (premultiplied colour C, transmittance T)

@@ -5,9 +5,11 @@
 // the view-space distance; WEIGHT_EQ10: Eq. 10 on the window depth gl_FragCoord.z.
 #include "../common/oitbench.glsl"
 #include "nodes.glsl"
+#include "../oit/shade.glsl"
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;
+in vec3 vWorld;
 uniform vec2 nearFar;  // the projection's planes (for the view-space distance)
 layout(location = 0) out vec4 accumulation;
 layout(location = 1) out vec4 revealage;
@@ -26,7 +28,7 @@ float weight(float d, float a) {
 }
 
 void main() {
-  vec4 c = approx_fragment_colour(vColour, vUv, vSoft);
+  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
   float w = c.a * weight(gl_FragCoord.z, c.a);
   accumulation = vec4(c.rgb * w, w);
   revealage = vec4(c.a);

@@ -3,12 +3,14 @@
 #include "../common/oitbench.glsl"
 #define STORAGE_CAPTURE
 #include "storage/fragments.glsl"
+#include "shade.glsl"
 layout(early_fragment_tests) in;
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;
+in vec3 vWorld;
 void main() {
   vec4 c = vColour;
   if (vSoft > 0.5) c.a *= clamp(1.0 - dot(vUv, vUv), 0.0, 1.0);  // soft particle: radial falloff
-  store_fragment(ivec2(gl_FragCoord.xy), c, gl_FragCoord.z);
+  store_fragment(ivec2(gl_FragCoord.xy), shade_fragment(c, vWorld), gl_FragCoord.z);
 }

@@ -1,4 +1,5 @@
-// Fragment capture: transforms the scene mesh (micro/oit/gpu_mesh.cpp's vertex layout).
+// Fragment capture: transforms the scene mesh (micro/oit/gpu_mesh.cpp's vertex layout); vWorld is
+// the world position the shading (shaders/oit/shade.glsl) needs.
 #include "../common/oitbench.glsl"
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec4 colour;
@@ -8,9 +9,11 @@ uniform mat4 viewProj;
 out vec4 vColour;
 out vec2 vUv;
 out float vSoft;
+out vec3 vWorld;
 void main() {
   vColour = colour;
   vUv = uv;
   vSoft = soft;
+  vWorld = position;
   gl_Position = viewProj * vec4(position, 1.0);
 }

@@ -3,5 +3,5 @@
 #ifndef OITBENCH_OIT_EFFECTS_H
 #define OITBENCH_OIT_EFFECTS_H
 #define OIT_BACKDROP_UNIT 7      // sampler2D, RGBA32F: the opaque pass's colour (opaque effect)
-#define OIT_OPAQUE_DEPTH_UNIT 8  // sampler2D: the opaque pass's depth, for techniques without a depth buffer
+#define OIT_OPAQUE_DEPTH_UNIT 9  // sampler2D: the opaque pass's depth, for techniques without a depth buffer
 #endif
