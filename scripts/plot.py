@@ -381,6 +381,73 @@ class _Relabelled:
         self.passes = data.passes
 
 
+EFFECT_INITIALS = {"opaque": "O", "transparency": "T", "self-shadowing": "S"}
+
+
+def effects_short(effects):
+    """opaque+transparency -> O+T (the legend spells them out)."""
+    return "+".join(EFFECT_INITIALS.get(e, e) for e in (effects or "").split("+") if e)
+
+
+def fmt_count(v):
+    v = oitcsv.to_float(v)
+    if v is None:
+        return ""
+    return f"{v / 1e6:.1f}M" if v >= 1e6 else f"{v / 1e3:.0f}k" if v >= 1e4 else f"{v:.0f}"
+
+
+def effects_panel(ax, rows, passes, title, legend):
+    """Per technique one bar per effect set, side by side: the case's passes stacked (effect passes and the
+    technique's alike), the fragments it captured above the bar: what each effect costs and saves."""
+    totals = [r for r in rows if r["pass"] == "total"]
+    techniques = sorted({oit_label(r) for r in totals})
+    sets = sorted({r.get("effects", "") for r in totals}, key=lambda e: (len(e.split("+")), e))
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    width = 0.8 / max(len(sets), 1)
+    drawn = set()
+    ticks, labels = [], []
+    for ti, t in enumerate(techniques):
+        for si, e in enumerate(sets):
+            case = [r for r in rows if oit_label(r) == t and r.get("effects", "") == e]
+            total = next((r for r in case if r["pass"] == "total"), None)
+            if total is None:
+                continue
+            x = ti + (si - (len(sets) - 1) / 2) * width
+            own = {r["pass"]: value(r) for r in case if r["pass"] != "total"}
+            if not own:  # a single-pass case writes only its total
+                own = {"(single pass)": value(total)}
+            bottom = 0.0
+            for p in passes + ["(single pass)"]:
+                if p not in own:
+                    continue
+                k = (passes + ["(single pass)"]).index(p)
+                ax.bar(x, own[p], width * 0.92, bottom=bottom, color=colors[k % len(colors)],
+                       label=p if p not in drawn else None)
+                drawn.add(p)
+                bottom += own[p]
+            ax.scatter([x], [value(total)], marker="_", s=120, color="black", zorder=3,
+                       label="total (measured)" if "total" not in drawn else None)
+            drawn.add("total")
+            frags = fmt_count(total.get("total_fragments"))
+            if frags:
+                ax.annotate(frags, (x, max(bottom, value(total) or 0)), xytext=(0, 3), textcoords="offset points",
+                            ha="center", fontsize=6, rotation=90)
+            ticks.append(x)
+            labels.append(effects_short(e))
+    ax.set_xticks(ticks)
+    ax.set_xticklabels(labels, fontsize=6)
+    for ti, t in enumerate(techniques):
+        ax.annotate(t, (ti, 0), xycoords=("data", "axes fraction"), xytext=(0, -18), textcoords="offset points",
+                    ha="center", fontsize=8)
+    ax.set_ylim(0, ax.get_ylim()[1] * 1.6)  # room for the legend above the bars
+    ax.set_ylabel("median time (ms)")
+    ax.grid(True, axis="y", alpha=0.3)
+    ax.set_title(title + " (above each bar: fragments captured)", fontsize=9)
+    if legend:
+        ax.legend(fontsize=6, loc="upper center", ncol=4, title=", ".join(f"{v}={k}" for k, v in EFFECT_INITIALS.items()),
+                  title_fontsize=6)
+
+
 @plotter("oit")
 def plot_oit(data):
     """One column per (scene, view, resolution): stacked pass times per technique on top, and below the
@@ -396,6 +463,11 @@ def plot_oit(data):
     for i, (gkey, grows) in enumerate(groups.items()):
         title = ", ".join(f"{c}={grows[0].get(c)}" for c in key_cols)
         same = [r for r in data.ok if all(r.get(c) == grows[0].get(c) for c in key_cols)]
+        if effects_vary(same):
+            effects_panel(axes[0][i], same, [p for p in data.passes if p != "total"], title, legend=(i == 0))
+            if error_col:
+                error_vs_time(axes[1][i], grows, error_col, title)
+            continue
         rel = _Relabelled(data, same)
         stacked_passes(axes[0][i], rel, [r for r in rel.ok if r["pass"] == "total"], title, legend=(i == 0))
         if error_col:
