@@ -1,6 +1,7 @@
 #include "oit/reference.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -13,19 +14,16 @@ namespace {
 
 struct Frag {
   float depth;
-  unsigned colour;
+  std::array<unsigned, 4> colour;  // the tie key: equal depths are ordered by it (node_tie_key)
+  glm::dvec4 rgba;                 // the stored colour, decoded
 };
-
-glm::dvec4 unpack(unsigned c) {
-  return {(c & 0xffu) / 255.0, ((c >> 8) & 0xffu) / 255.0, ((c >> 16) & 0xffu) / 255.0, (c >> 24) / 255.0};
-}
 
 // Collects one pixel's fragments in list order; false if the list is broken.
 bool gather(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
   out.clear();
   for (unsigned n = l.heads[pixel]; n != kListEnd; n = l.next[n]) {
     if (n >= l.nodes.size() || out.size() > l.nodes.size()) return false;
-    out.push_back({std::bit_cast<float>(l.nodes[n].y), l.nodes[n].x});
+    out.push_back({std::bit_cast<float>(l.nodes[n].y), node_tie_key(l, n), node_colour(l, n)});
   }
   return true;
 }
@@ -74,7 +72,7 @@ std::vector<double> composite_reference(const HostLists& l, glm::vec3 background
     glm::dvec3 c(0.0);
     double transmittance = 1.0;
     for (const auto& fr : f) {
-      glm::dvec4 k = unpack(fr.colour);
+      const glm::dvec4& k = fr.rgba;
       c += transmittance * k.a * glm::dvec3(k);
       transmittance *= 1.0 - k.a;
     }
@@ -99,7 +97,7 @@ void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool 
         });
         glm::vec3 c = background;
         for (const auto& fr : f) {
-          glm::vec4 k = unpack(fr.colour);
+          glm::vec4 k(fr.rgba);
           c = glm::mix(c, glm::vec3(k), k.a);
         }
         if (perturb && p % l.width == row) c.r += 1.0f / 64.0f;  // the diagonal, like the shaders
