@@ -3,6 +3,7 @@
 // precision-* scenes in scenes/. Every case of a planes-only scene is checked against both
 // references (the captured fragments and the scene's own planes composited in double); a case the
 // format or the driver cannot get right must be `invalid` with the reason, never `valid` and wrong.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -161,6 +162,20 @@ TEST_F(Precision, TruthColumnsOnAnalyticScenesOnly) {
   auto smoke = run_case("oit", {{"scene", "smoke"}, {"technique", "BASE-IS"}, {"detail", "small"}}, {32, 32});
   EXPECT_FALSE(smoke.metrics.count("truth_rmse"));
   EXPECT_TRUE(smoke.metrics.count("out_of_range_pixels"));
+}
+
+// `render` writes the float image for approximate techniques too, and the row says whether any pixel
+// lies outside [0, 1] (what the 8-bit PNG cannot show).
+TEST(PrecisionCli, RenderWritesThePfmOfAnApproximateTechnique) {
+  auto dir = temp_dir("render-approx");
+  auto r = run_oitbench({"render", "--scene", "precision-ulp-3", "--technique", "WBOIT", "--resolution", "16x16",
+                         "--out", (dir / "wboit.png").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(std::filesystem::file_size(dir / "wboit.pfm"), std::string("PF\n16 16\n-1.0\n").size() + 16 * 16 * 12);
+  auto rows = read_csv_rows(dir / "wboit.csv");
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(rows.back()["out_of_range_pixels"], "0");
+  EXPECT_FALSE(rows.back()["truth_rmse"].empty()) << "an analytic scene: the truth on an approximate row too";
 }
 
 }  // namespace oitbench::test
