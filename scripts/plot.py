@@ -352,6 +352,10 @@ def oit_label(row):
         t += f"/{row['nodes']}"
     if t == "WBOIT" and row.get("wboit_weight"):
         t += f"/{row['wboit_weight']}"
+    # Fragment formats other than the papers' (rgba8, window depth) are part of the case's name.
+    for col, default in (("frag_colour", "rgba8"), ("frag_depth", "window")):
+        if row.get(col) and row[col] != default:
+            t += f"/{row[col]}"
     return t
 
 
@@ -368,6 +372,41 @@ def oit_effects_label(row, with_effects):
         if row.get("total_fragments"):
             label += f" {oitcsv.to_float(row['total_fragments']):,.0f} frags"
     return label
+
+
+def has_formats(rows):
+    """True when the rows vary the fragment format (the precision preset)."""
+    return any(r.get("frag_colour") not in (None, "", "rgba8") or r.get("frag_depth") not in (None, "", "window")
+               for r in rows)
+
+
+def format_cost(ax, rows, title):
+    """What precision costs: each case a point at its time and its error against the truth (the geometric
+    reference's truth_rmse where the scene is analytic, else rmse against the captured fragments), the
+    point's area and label giving its fragment storage (node_pool_bytes)."""
+    column = "truth_rmse" if any(oitcsv.to_float(r.get("truth_rmse")) is not None for r in rows) else "rmse"
+    floor = 1e-9
+    colors = {"rgba8": "tab:blue", "rgba16f": "tab:orange", "rgba32f": "tab:green"}
+    for r in rows:
+        t, e = value(r), oitcsv.to_float(r.get(column))
+        if t is None or e is None:
+            continue
+        mib = (oitcsv.to_float(r.get("node_pool_bytes")) or 0.0) / 2**20
+        ax.scatter(t, max(e, floor), s=20 + 30 * mib ** 0.5, color=colors.get(r.get("frag_colour"), "tab:gray"),
+                   marker="o" if r.get("frag_depth") != "view" else "s", alpha=0.8, zorder=3)
+        ax.annotate(f"{oit_label(r)} {mib:.2f} MiB", (t, max(e, floor)), fontsize=6, xytext=(3, 2),
+                    textcoords="offset points")
+    for name, c in colors.items():
+        ax.scatter([], [], color=c, label=name)
+    ax.scatter([], [], color="black", marker="o", label="window depth")
+    ax.scatter([], [], color="black", marker="s", label="view depth")
+    ax.legend(fontsize=7, loc="upper right")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("total median time (ms); area: fragment storage")
+    ax.set_ylabel(f"{column} (floor {floor:g})")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set_title(f"fragment format: time, memory, error: {title}", fontsize=9)
 
 
 class _Relabelled:
@@ -458,20 +497,21 @@ def plot_oit(data):
     groups = dict(list(group_rows(totals, key_cols).items())[:MAX_FACETS])
     error_col = next((c for c in ERROR_COLUMNS if any(oitcsv.to_float(r.get(c)) is not None for r in totals)), None)
     ncols = max(len(groups), 1)
-    nrows = 2 if error_col else 1
+    formats = has_formats(totals)
+    nrows = (2 if error_col else 1) + (1 if formats else 0)
     fig, axes = plt.subplots(nrows, ncols, figsize=(max(7.0, 6.0 * ncols), 5.2 * nrows + 0.8), squeeze=False)
     for i, (gkey, grows) in enumerate(groups.items()):
         title = ", ".join(f"{c}={grows[0].get(c)}" for c in key_cols)
         same = [r for r in data.ok if all(r.get(c) == grows[0].get(c) for c in key_cols)]
         if effects_vary(same):
             effects_panel(axes[0][i], same, [p for p in data.passes if p != "total"], title, legend=(i == 0))
-            if error_col:
-                error_vs_time(axes[1][i], grows, error_col, title)
-            continue
-        rel = _Relabelled(data, same)
-        stacked_passes(axes[0][i], rel, [r for r in rel.ok if r["pass"] == "total"], title, legend=(i == 0))
+        else:
+            rel = _Relabelled(data, same)
+            stacked_passes(axes[0][i], rel, [r for r in rel.ok if r["pass"] == "total"], title, legend=(i == 0))
         if error_col:
             error_vs_time(axes[1][i], grows, error_col, title)
+        if formats:
+            format_cost(axes[nrows - 1][i], grows, title)
     fig.suptitle(title_of(data, "techniques: pass times, and error against time"), fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.95))
     return fig

@@ -112,6 +112,19 @@ class OitExperiment final : public Experiment {
                                 ParamSpec::Kind::Integer,
                                 8,
                                 4096};
+    ParamSpec frag_colour{"frag_colour",
+                          "what a captured fragment keeps of its colour: rgba8 (packUnorm4x8, the papers' 8-byte "
+                          "node with the depth), rgba16f (binary16, 12-byte node), rgba32f (float, 20-byte node); "
+                          "docs/precision.md",
+                          {"rgba8"},
+                          {},
+                          frag_colour_names()};
+    ParamSpec frag_depth{"frag_depth",
+                         "the depth a fragment is sorted by: window (gl_FragCoord.z) or view (float32 view-space "
+                         "distance along the view axis: relative precision 6e-8 at every distance)",
+                         {"window"},
+                         {},
+                         frag_depth_names()};
     // Each technique parameter is scoped to the techniques that read it, so a row carries only its own.
     const auto& exact = exact_technique_names();
     auto exact_but = [&](const std::string& skip) {
@@ -125,8 +138,11 @@ class OitExperiment final : public Experiment {
     max_frags.only_when("technique", exact_but("CPU-NATIVE"));
     cs_group.only_when("technique", {"CS-IS", "CS-IMS", "CS-RBS-L"});
     auto_cache.only_when("technique", {"BMA-AUTO"});
-    std::vector<ParamSpec> ps = {scene, view,      technique, effects_param(), capture,       detail,           block,
-                                 pool,  max_frags, cs_group,  auto_cache,      shadow_slices, shadow_resolution};
+    frag_colour.only_when("technique", exact);
+    frag_depth.only_when("technique", exact);
+    std::vector<ParamSpec> ps = {
+        scene,     view,     technique,  effects_param(), capture,           detail,      block,     pool,
+        max_frags, cs_group, auto_cache, shadow_slices,   shadow_resolution, frag_colour, frag_depth};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     return ps;
   }
@@ -152,6 +168,15 @@ class OitExperiment final : public Experiment {
         {"tied_pixels", T::Integer, "", "pixels with fragments of equal depth (their order is by colour)"},
         {"hidden_fragments", T::Integer, "",
          "opaque effect: transparent fragments behind the opaque depth, never captured (the CPU's count)"},
+        // the geometric reference of analytic (planes-only) scenes: empty elsewhere (docs/precision.md)
+        {"truth_rmse", T::Number, "",
+         "rmse against the scene's planes composited in double in their true order, colours as described "
+         "(no format's quantisation)"},
+        {"truth_max_abs_error", T::Number, "", "largest channel error against that composite"},
+        {"geometric_bad_pixels", T::Integer, "",
+         "pixels off the geometric composite with the fragment format's quantisation by more than the tolerance"},
+        {"ambiguous_pixels", T::Integer, "",
+         "pixels left out of the geometric comparison: a plane edge, the near or the far plane at the pixel centre"},
         // approximate techniques (micro/oit/approx.cpp)
         {"model_rmse", T::Number, "", "rmse of the technique's CPU model against the exact reference"},
         {"model_max_diff", T::Number, "", "largest channel difference between the GPU image and the CPU model"},

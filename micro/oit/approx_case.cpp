@@ -11,6 +11,7 @@
 #include "gl/render_target.hpp"
 #include "oit/approx.hpp"
 #include "oit/approx_model.hpp"
+#include "oit/geometric_reference.hpp"
 #include "oit/gpu_mesh.hpp"
 #include "oit/image_compare.hpp"
 #include "oit/image_io.hpp"
@@ -128,6 +129,10 @@ class ApproxCase final : public OitCase {
     glm::mat4 vp = passes_.view_projection();
     passes_.attach_opaque_depth(out_.framebuffer());
     passes_.attach_opaque_depth(accum_.framebuffer());
+    // Analytic scenes: the truth from the scene's own planes (the capture keeps RGBA8 colours).
+    if (passes_.effects() == std::vector<std::string>{"transparency"})  // the geometry knows no other effect
+      geometry_ = geometric_reference(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full,
+                                      near_far(view, passes_.mesh()), width_, height_, FragColour::RGBA8);
     // The planes back out of the perspective matrix (glm::perspective's layout).
     glm::mat4 pm = vp * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
@@ -336,6 +341,15 @@ class ApproxCase final : public OitCase {
       }
     }
     m["nonfinite"] = std::to_string(nonfinite);
+    m["out_of_range_pixels"] = std::to_string(image_range(rgb, 3).out_of_range_pixels);
+    if (geometry_) {
+      std::vector<float> rgba(rgb.size() / 3 * 4, 1.0f);  // as the geometric check reads an image
+      for (size_t i = 0; i < rgb.size() / 3; ++i)
+        for (int k = 0; k < 3; ++k) rgba[i * 4 + k] = rgb[i * 3 + k];
+      GeometricCheck g = check_against_geometry(*geometry_, rgba, {}, scene_.background, 1.0);
+      m["truth_rmse"] = fmt(g.truth_rmse);
+      m["truth_max_abs_error"] = fmt(g.truth_max_abs_error);
+    }
     m["model_max_diff"] = fmt(model_max);
     unsigned capped = 0;
     if (arrays_) {
@@ -404,6 +418,7 @@ class ApproxCase final : public OitCase {
   int width_, height_;
   ScenePasses passes_;
   const SceneDesc& scene_;
+  std::optional<GeometricReference> geometry_;
   RenderTarget out_, accum_;
   FullscreenTriangle quad_;
   Backdrop backdrop_;

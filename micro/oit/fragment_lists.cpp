@@ -8,10 +8,11 @@
 
 namespace oitbench::oit {
 
-FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool with_counts)
+FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool with_counts, FragFormat format)
     : width_(width),
       height_(height),
       with_counts_(with_counts),
+      format_(format),
       heads_(gl::make_texture(GL_TEXTURE_2D)),
       counter_(gl::make_buffer()) {
   glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
@@ -24,14 +25,14 @@ FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool wi
 }
 
 void FragmentLists::allocate(size_t pool) {
-  nodes_ = make_texel_buffer(pool, GL_RG32UI, 8, "linked-list node pool");
+  nodes_ = NodePool(pool, format_.colour, "linked-list node pool");
   next_ = make_texel_buffer(pool, GL_R32UI, 4, "linked-list node pool");
   pool_ = pool;
 }
 
 void FragmentLists::bind() const {
   glBindImageTexture(kHeadsUnit, heads_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-  glBindImageTexture(kNodesUnit, nodes_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
+  nodes_.bind();
   glBindImageTexture(kNextUnit, next_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   if (with_counts_) glBindImageTexture(kCountsUnit, counts_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, kCounterBinding, counter_.get());
@@ -43,9 +44,9 @@ std::vector<Defines> FragmentLists::capture_passes() const {
 }
 
 size_t FragmentLists::bytes() const {
-  // Nodes (8-byte fragment + 4-byte next), the heads (and counts), the counter.
+  // Nodes (the format's fragment + 4-byte next), the heads (and counts), the counter.
   size_t pixels = static_cast<size_t>(width_) * height_;
-  return pool_ * 12 + pixels * 4 * (with_counts_ ? 2 : 1) + sizeof(unsigned);
+  return pool_ * (frag_node_bytes(format_.colour) + 4) + pixels * 4 * (with_counts_ ? 2 : 1) + sizeof(unsigned);
 }
 
 int FragmentLists::capture(const std::vector<GLuint>& programs, const std::function<void()>& draw) {
@@ -94,12 +95,9 @@ HostLists FragmentLists::read_back() const {
                       h.counts.data());
   }
   size_t n = std::min(fragments_, pool_);
-  h.nodes.resize(n);
+  nodes_.read(n, h);
   h.next.resize(n);
-  if (n) {
-    glGetNamedBufferSubData(nodes_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 8), h.nodes.data());
-    glGetNamedBufferSubData(next_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 4), h.next.data());
-  }
+  if (n) glGetNamedBufferSubData(next_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 4), h.next.data());
   return h;
 }
 

@@ -4,6 +4,7 @@
 // (packed_arrays.hpp: count pass, prefix sum, fill). Shaders read either through the one API of
 // shaders/oit/storage/fragments.glsl, selected by the storage's defines(); the resolves, the sorts
 // and the CPU side are written once.
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <glm/glm.hpp>
@@ -19,19 +20,69 @@ namespace oitbench::oit {
 
 inline constexpr unsigned kListEnd = 0xFFFFFFFFu;
 
-// Image units and bindings of shaders/oit/storage/*.glsl. Unit 1 (the fragments) is shared.
-inline constexpr GLuint kHeadsUnit = 0, kNodesUnit = 1, kNextUnit = 2, kCountsUnit = 3, kCounterBinding = 0,
-                        kOffsetsBinding = 2;
+// Image units and bindings of shaders/oit/storage/*.glsl. Unit 1 (the fragments) is shared; unit 5
+// holds the depths of the wide colour formats (docs/precision.md).
+inline constexpr GLuint kHeadsUnit = 0, kNodesUnit = 1, kNextUnit = 2, kCountsUnit = 3, kNodeDepthUnit = 5,
+                        kCounterBinding = 0, kOffsetsBinding = 2;
+
+// What one captured fragment keeps (the frag_colour and frag_depth parameters; shaders/oit/storage/
+// fragments.glsl is written once against them):
+//   colour rgba8    packUnorm4x8 (the papers' packing; 8-byte nodes with the depth)
+//          rgba16f  two packHalf2x16 words, depth apart (12 bytes)
+//          rgba32f  four float words, depth apart (20 bytes)
+//   depth  window   gl_FragCoord.z
+//          view     the view-space distance along the view axis (clip w), a float32: relative
+//                   precision 2^-24 at every distance, where window depth's collapses away from near
+// Either depth is >= 0, so its float bits compare as uints (the sorts' key).
+enum class FragColour { RGBA8, RGBA16F, RGBA32F };
+enum class FragDepth { Window, View };
+struct FragFormat {
+  FragColour colour = FragColour::RGBA8;
+  FragDepth depth = FragDepth::Window;
+};
+const std::vector<std::string>& frag_colour_names();  // "rgba8", "rgba16f", "rgba32f"
+const std::vector<std::string>& frag_depth_names();   // "window", "view"
+// Throws std::invalid_argument naming the valid values.
+FragFormat parse_frag_format(const std::string& colour, const std::string& depth);
+Defines frag_format_defines(FragFormat f);  // FRAG_COLOUR_<X>, FRAG_DEPTH_<X>
+size_t frag_node_bytes(FragColour c);       // 8, 12, 20: one fragment's colour and depth
 
 // The fragments as read back to the CPU (the input of the CPU reference and of CPU-NATIVE), as
 // lists whatever the layout: a packed array reads back as lists whose next node is the next slot.
 struct HostLists {
   int width = 0, height = 0;
   std::vector<unsigned> heads;    // width*height, row-major from the bottom row
-  std::vector<glm::uvec2> nodes;  // (packUnorm4x8 colour, floatBitsToUint depth)
+  std::vector<glm::uvec2> nodes;  // (packUnorm4x8 colour, floatBitsToUint depth); wide colours: x unused
+  FragColour colour = FragColour::RGBA8;
+  std::vector<glm::uvec4> wide;  // rgba16f: (half rg, half ba, 0, 0); rgba32f: float bits; else empty
   std::vector<unsigned> next;
   std::vector<unsigned> counts;  // per-pixel counts when captured with counts, else empty
   std::string error;             // what the layout's own read-back check found wrong, else empty
+};
+
+// A buffer of `texels` seen as an image buffer of `format` (`texel_bytes` each): the fragments of
+// both layouts, PPLL's next pointers. Throws Unsupported past GL_MAX_TEXTURE_BUFFER_SIZE, naming `what`.
+struct TexelBuffer {
+  gl::Buffer buffer;
+  gl::Texture view;
+};
+TexelBuffer make_texel_buffer(size_t texels, GLenum format, size_t texel_bytes, const std::string& what);
+
+// A node's colour as stored (decoded exactly), and the words equal depths are ordered by: alpha,
+// blue, green, red of the stored colour, compared as uints (larger goes farther), as the shaders do.
+glm::dvec4 node_colour(const HostLists& h, size_t node);
+std::array<unsigned, 4> node_tie_key(const HostLists& h, size_t node);
+
+// Every node's colour and depth words in one or two texel buffers (image units 1 and 5), per format.
+class NodePool {
+ public:
+  NodePool() = default;
+  NodePool(size_t pool, FragColour colour, const std::string& what);
+  void bind() const;
+  void read(size_t n, HostLists& h) const;  // the first n nodes into h.nodes (and h.wide)
+ private:
+  FragColour colour_ = FragColour::RGBA8;
+  TexelBuffer colours_, depths_;
 };
 
 enum class CaptureStorage { PPLL, PPPA };
@@ -58,17 +109,9 @@ class FragmentStorage {
   virtual HostLists read_back() const = 0;
 };
 
-// A buffer of `texels` seen as an image buffer of `format` (`texel_bytes` each): the fragments of
-// both layouts, PPLL's next pointers. Throws Unsupported past GL_MAX_TEXTURE_BUFFER_SIZE, naming `what`.
-struct TexelBuffer {
-  gl::Buffer buffer;
-  gl::Texture view;
-};
-TexelBuffer make_texel_buffer(size_t texels, GLenum format, size_t texel_bytes, const std::string& what);
-
 // `with_counts`: PPLL also counts each pixel's fragments (BMA); PPPA always does.
 std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,
-                                                       bool with_counts);
+                                                       bool with_counts, FragFormat format = {});
 
 // The capture programs of `storage` from `stages` (a fragment shader that calls store_fragment()),
 // with `extra` defines (an effect's, e.g. OpacityShadowMap::defines()).

@@ -26,6 +26,22 @@ ApproxError approx_error(const std::vector<float>& rgb, const std::vector<double
   return e;
 }
 
+ImageRange image_range(const std::vector<float>& image, int channels) {
+  ImageRange r;
+  for (size_t i = 0; i + channels <= image.size(); i += channels) {
+    bool out = false;
+    for (int k = 0; k < 3; ++k) {
+      float v = image[i + k];
+      if (!std::isfinite(v))
+        ++r.nonfinite;
+      else
+        out |= v < 0.0f || v > 1.0f;
+    }
+    r.out_of_range_pixels += out;
+  }
+  return r;
+}
+
 ImageError compare_with_reference(const std::vector<float>& rgba, const std::vector<double>& ref,
                                   const ListStats& stats, const Backdrop& backdrop, int width, double tolerance) {
   ImageError e;

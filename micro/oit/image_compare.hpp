@@ -26,4 +26,12 @@ struct ApproxError {
 };
 ApproxError approx_error(const std::vector<float>& rgb, const std::vector<double>& reference);
 
+// What an image holds outside displayable colours (the PFM keeps it; the PNG cannot show it):
+// channel values that are NaN or infinite, and pixels with a finite colour channel outside [0, 1].
+// `channels` 3 (RGB) or 4 (RGBA as the exact resolves write it; alpha is not a colour there).
+struct ImageRange {
+  size_t nonfinite = 0, out_of_range_pixels = 0;
+};
+ImageRange image_range(const std::vector<float>& image, int channels);
+
 }  // namespace oitbench::oit

@@ -14,7 +14,9 @@ inline std::vector<MetricSpec> image_error_metrics() {
           {"psnr", T::Number, "dB", "peak signal-to-noise ratio, 20 log10(1 / rmse); 999 for an exact image"},
           {"max_abs_error", T::Number, "", "largest absolute error of a channel"},
           {"frac_pixels_off", T::Number, "", "fraction of pixels with a channel more than 1/255 off"},
-          {"nonfinite", T::Integer, "", "channel values that are NaN or infinite"}};
+          {"nonfinite", T::Integer, "", "channel values that are NaN or infinite"},
+          {"out_of_range_pixels", T::Integer, "",
+           "pixels with a finite colour channel outside [0, 1] (the PFM from render keeps them)"}};
 }
 
 // What the captured view holds.

@@ -6,9 +6,10 @@
 
 namespace oitbench::oit {
 
-PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool)
+PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool, FragFormat format)
     : width_(ctx.width()),
       height_(ctx.height()),
+      format_(format),
       counts_(gl::make_texture(GL_TEXTURE_2D)),
       offsets_(gl::make_buffer()),
       scan_(ctx, static_cast<size_t>(ctx.width()) * ctx.height()) {
@@ -19,19 +20,20 @@ PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool)
 }
 
 void PackedArrays::allocate(size_t pool) {
-  nodes_ = make_texel_buffer(pool, GL_RG32UI, 8, "packed per-pixel arrays");
+  nodes_ = NodePool(pool, format_.colour, "packed per-pixel arrays");
   pool_ = pool;
 }
 
 void PackedArrays::bind() const {
-  glBindImageTexture(kNodesUnit, nodes_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
+  nodes_.bind();
   glBindImageTexture(kCountsUnit, counts_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOffsetsBinding, offsets_.get());
 }
 
 size_t PackedArrays::bytes() const {
   size_t pixels = static_cast<size_t>(width_) * height_;
-  return pool_ * 8 + pixels * 4 * 2 + scan_.bytes();  // fragments, counts, offsets, the scan's levels
+  return pool_ * frag_node_bytes(format_.colour) + pixels * 4 * 2 +
+         scan_.bytes();  // fragments, counts, offsets, the scan's levels
 }
 
 int PackedArrays::capture(const std::vector<GLuint>& programs, const std::function<void()>& draw) {
@@ -70,8 +72,7 @@ HostLists PackedArrays::read_back() const {
   std::vector<unsigned> ends(pixels);
   glGetNamedBufferSubData(offsets_.get(), 0, static_cast<GLsizeiptr>(pixels * 4), ends.data());
   const size_t n = std::min(fragments_, pool_);
-  h.nodes.resize(n);
-  if (n) glGetNamedBufferSubData(nodes_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 8), h.nodes.data());
+  nodes_.read(n, h);
   // As lists: pixel p's fragments are the slots [first, first + count) of the scan.
   h.heads.assign(pixels, kListEnd);
   h.next.assign(n, kListEnd);

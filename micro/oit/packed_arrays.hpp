@@ -2,8 +2,8 @@
 // Packed per-pixel arrays, PPPA (Knowles 2014 section 2.2, after Peeper's linearized A-buffer;
 // shaders/oit/storage/linearized.glsl): a count pass of the geometry, an exclusive prefix sum of
 // the per-pixel counts (prefix_sum.hpp) whose total sizes the fragment buffer before anything is
-// stored, and a fill pass that puts each fragment in its pixel's next slot. No next pointers (8
-// bytes a fragment instead of 12), no global counter to contend on, never an overflow: the price
+// stored, and a fill pass that puts each fragment in its pixel's next slot. No next pointers (a
+// fragment's 8 bytes instead of 12 in RGBA8), no global counter to contend on, never an overflow: the price
 // is the second pass of the geometry. The counts stay, so BMA needs nothing more.
 #include "oit/fragment_storage.hpp"
 #include "oit/prefix_sum.hpp"
@@ -12,10 +12,14 @@ namespace oitbench::oit {
 
 class PackedArrays final : public FragmentStorage {
  public:
-  PackedArrays(const CaseContext& ctx, size_t initial_pool);
+  PackedArrays(const CaseContext& ctx, size_t initial_pool, FragFormat format = {});
 
   CaptureStorage kind() const override { return CaptureStorage::PPPA; }
-  Defines defines() const override { return {{"STORAGE_PPPA", ""}}; }
+  Defines defines() const override {
+    Defines d = frag_format_defines(format_);
+    d.push_back({"STORAGE_PPPA", ""});
+    return d;
+  }
   std::vector<Defines> capture_passes() const override {
     return {{{"STORAGE_PPPA_COUNT", ""}}, {{"STORAGE_PPPA_FILL", ""}}};
   }
@@ -36,9 +40,10 @@ class PackedArrays final : public FragmentStorage {
  private:
   void allocate(size_t pool);
   int width_, height_;
+  FragFormat format_;
   size_t pool_ = 0, fragments_ = 0;
   gl::Texture counts_;
-  TexelBuffer nodes_;
+  NodePool nodes_;
   gl::Buffer offsets_;
   PrefixSum scan_;
   double last_count_ms_ = 0;

@@ -14,6 +14,35 @@ struct PackedFragment {
 inline float key_of(const PackedFragment& f) { return std::bit_cast<float>(f.key_bits); }
 inline uint32_t bits_of(float k) { return std::bit_cast<uint32_t>(k); }
 
+// IEEE binary16 <-> float, as packHalf2x16 / unpackHalf2x16 do (round to nearest even; the
+// reference quantises what an rgba16f fragment can hold with the same rounding).
+inline float half_to_float(uint16_t h) {
+  uint32_t sign = (h & 0x8000u) << 16, exp = (h >> 10) & 0x1fu, man = h & 0x3ffu;
+  if (exp == 0) {  // zero or subnormal: man * 2^-24
+    float v = static_cast<float>(man) * (1.0f / 16777216.0f);
+    return sign ? -v : v;
+  }
+  if (exp == 31) return std::bit_cast<float>(sign | 0x7f800000u | (man << 13));
+  return std::bit_cast<float>(sign | ((exp + 112) << 23) | (man << 13));
+}
+inline uint16_t float_to_half(float f) {
+  uint32_t x = std::bit_cast<uint32_t>(f), sign = (x >> 16) & 0x8000u;
+  uint32_t ax = x & 0x7fffffffu;
+  if (ax >= 0x7f800000u) return static_cast<uint16_t>(sign | 0x7c00u | (ax > 0x7f800000u ? 0x200u : 0));
+  if (ax >= 0x477ff000u) return static_cast<uint16_t>(sign | 0x7c00u);  // rounds past 65504: infinity
+  if (ax < 0x38800000u) {                                               // subnormal half (or zero)
+    float v = std::bit_cast<float>(ax) * 16777216.0f;                   // in units of 2^-24
+    uint32_t m = static_cast<uint32_t>(v), r = 0;
+    float frac = v - static_cast<float>(m);
+    if (frac > 0.5f || (frac == 0.5f && (m & 1u))) r = 1;
+    return static_cast<uint16_t>(sign | (m + r));
+  }
+  uint32_t e = (ax >> 23) - 112, man = ax & 0x7fffffu;
+  uint32_t h = (e << 10) | (man >> 13), rest = man & 0x1fffu;
+  if (rest > 0x1000u || (rest == 0x1000u && (h & 1u))) ++h;  // may carry into the exponent: still right
+  return static_cast<uint16_t>(sign | h);
+}
+
 inline int ceil_log2(int n) {
   int l = 0;
   while ((1 << l) < n) ++l;

@@ -1,6 +1,7 @@
 #include "oit/reference.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -13,19 +14,16 @@ namespace {
 
 struct Frag {
   float depth;
-  unsigned colour;
+  std::array<unsigned, 4> colour;  // the tie key: equal depths are ordered by it (node_tie_key)
+  glm::dvec4 rgba;                 // the stored colour, decoded
 };
-
-glm::dvec4 unpack(unsigned c) {
-  return {(c & 0xffu) / 255.0, ((c >> 8) & 0xffu) / 255.0, ((c >> 16) & 0xffu) / 255.0, (c >> 24) / 255.0};
-}
 
 // Collects one pixel's fragments in list order; false if the list is broken.
 bool gather(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
   out.clear();
   for (unsigned n = l.heads[pixel]; n != kListEnd; n = l.next[n]) {
     if (n >= l.nodes.size() || out.size() > l.nodes.size()) return false;
-    out.push_back({std::bit_cast<float>(l.nodes[n].y), l.nodes[n].x});
+    out.push_back({std::bit_cast<float>(l.nodes[n].y), node_tie_key(l, n), node_colour(l, n)});
   }
   return true;
 }
@@ -65,19 +63,23 @@ HostLists visible_fragments(const HostLists& l, const Backdrop& b, size_t& hidde
   HostLists out;
   out.width = l.width;
   out.height = l.height;
+  out.colour = l.colour;
   out.error = l.error;
   out.heads.assign(l.heads.size(), kListEnd);
   hidden = 0;
-  std::vector<Frag> f;
+  std::vector<unsigned> kept;
   for (size_t p = 0; p < l.heads.size(); ++p) {
-    gather(l, p, f);
-    // Kept in list order (head first), so a pixel's order is the capture's, minus the hidden ones.
-    for (auto it = f.rbegin(); it != f.rend(); ++it) {
-      if (b.hides(p, it->depth)) {
+    kept.clear();
+    for (unsigned n = l.heads[p]; n != kListEnd && n < l.nodes.size() && kept.size() <= l.nodes.size(); n = l.next[n])
+      kept.push_back(n);
+    // Relinked in list order (head first): a pixel's order is the capture's, minus the hidden ones.
+    for (auto it = kept.rbegin(); it != kept.rend(); ++it) {
+      if (b.hides(p, std::bit_cast<float>(l.nodes[*it].y))) {
         ++hidden;
         continue;
       }
-      out.nodes.push_back({it->colour, std::bit_cast<unsigned>(it->depth)});
+      out.nodes.push_back(l.nodes[*it]);
+      if (!l.wide.empty()) out.wide.push_back(l.wide[*it]);
       out.next.push_back(out.heads[p]);
       out.heads[p] = static_cast<unsigned>(out.nodes.size() - 1);
     }
@@ -114,7 +116,7 @@ std::vector<double> composite_reference(const HostLists& l, const Backdrop& back
     glm::dvec3 c(0.0);
     double transmittance = 1.0;
     for (const auto& fr : f) {
-      glm::dvec4 k = unpack(fr.colour);
+      const glm::dvec4& k = fr.rgba;
       c += transmittance * k.a * glm::dvec3(k);
       transmittance *= 1.0 - k.a;
     }
@@ -139,8 +141,10 @@ void resolve_native(const HostLists& l, const Backdrop& backdrop, int threads, b
         });
         glm::vec3 c = backdrop.at(p);
         for (const auto& fr : f) {
-          glm::vec4 k = unpack(fr.colour);
-          c = glm::mix(c, glm::vec3(k), k.a);
+          glm::vec4 k(fr.rgba);
+          // "over" with one rounding per channel (fma), as GPUs blend: 5000 layers of alpha 1e-4 in
+          // rgba32f stay within 1e-6 of the truth, where a separately rounded mix drifts by 6e-5.
+          for (int ch = 0; ch < 3; ++ch) c[ch] = std::fma(k.a, k[ch] - c[ch], c[ch]);
         }
         if (perturb && p % l.width == row) c.r += 1.0f / 64.0f;  // the diagonal, like the shaders
         out[p * 4 + 0] = c.r;

@@ -126,7 +126,7 @@ struct Builder {
     centroids.push_back(centroid);
   }
   unsigned vertex(glm::vec3 p, glm::vec4 c, glm::vec2 uv = {0, 0}, float soft = 0) {
-    mesh.vertices.push_back({p, glm::u8vec4(glm::clamp(c, 0.0f, 1.0f) * 255.0f + 0.5f), uv, soft});
+    mesh.vertices.push_back({p, glm::clamp(c, 0.0f, 1.0f), uv, soft});
     return static_cast<unsigned>(mesh.vertices.size() - 1);
   }
   void quad(unsigned a, unsigned b, unsigned c, unsigned d) {
@@ -169,19 +169,35 @@ double param(const json& p, const char* key, double fallback) {
 }
 
 // The paper's synthetic scene: `count` planes facing +z, evenly spaced from z = +depth/2 (plane 0)
-// to -depth/2, each a different hue, generated nearest-to-+z first.
-void gen_planes(Builder& b, const json& p, const Material& m) {
+// to -depth/2 around `offset`, each a different hue (or `colours[i]`, `alphas[i]`), generated
+// nearest-to-+z first.
+std::vector<AnalyticPlane> planes_of(const json& p, const Material& m) {
   int count = static_cast<int>(param(p, "count", 128));
   double half = param(p, "half_size", 2.0), depth = param(p, "depth", 2.0);
+  glm::dvec3 offset(0.0);
+  if (p.contains("offset"))
+    for (int k = 0; k < 3; ++k) offset[k] = p["offset"][k].get<double>();
+  std::vector<AnalyticPlane> out;
   for (int i = 0; i < count; ++i) {
     double z = count == 1 ? 0.0 : depth / 2 - depth * i / (count - 1);
     glm::vec4 c(glm::mix(m.colour, hue(static_cast<double>(i) / count), 0.5f), m.alpha);
+    if (p.contains("colours"))
+      for (int k = 0; k < 3; ++k) c[k] = p["colours"][i][k].get<float>();
+    if (p.contains("alphas") && !m.opaque) c.a = p["alphas"][i].get<float>();
+    out.push_back({offset + glm::dvec3(0, 0, z), half, c});
+  }
+  return out;
+}
+
+void gen_planes(Builder& b, const json& p, const Material& m) {
+  for (const AnalyticPlane& pl : planes_of(p, m)) {
     b.begin();
-    float h = static_cast<float>(half), zf = static_cast<float>(z);
-    unsigned v0 = b.vertex({-h, -h, zf}, c), v1 = b.vertex({h, -h, zf}, c), v2 = b.vertex({h, h, zf}, c),
-             v3 = b.vertex({-h, h, zf}, c);
+    glm::vec3 o(pl.centre);
+    float h = static_cast<float>(pl.half_size);
+    unsigned v0 = b.vertex(o + glm::vec3(-h, -h, 0), pl.colour), v1 = b.vertex(o + glm::vec3(h, -h, 0), pl.colour),
+             v2 = b.vertex(o + glm::vec3(h, h, 0), pl.colour), v3 = b.vertex(o + glm::vec3(-h, h, 0), pl.colour);
     b.quad(v0, v1, v2, v3);
-    b.end({0, 0, zf});
+    b.end(o);
   }
 }
 
@@ -528,7 +544,10 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
                         "model_opacity",
                         "opaque_unless_translucent",
                         "alpha_by_material",
-                        "exclude_materials"});
+                        "exclude_materials",
+                        "offset",
+                        "colours",
+                        "alphas"});
       for (const auto& [pk, pv] : pn.raw().items()) {
         auto v = pn.child(pk);
         if (pk == "model_opacity" || pk == "opaque_unless_translucent") {
@@ -539,6 +558,14 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
         } else if (pk == "exclude_materials") {
           if (!pv.is_array()) v.fail("expected an array of model material names");
           for (size_t e = 0; e < pv.size(); ++e) v.element(e).str();
+        } else if (pk == "offset") {
+          v.vec3();
+        } else if (pk == "colours" || pk == "alphas") {
+          if (!pv.is_array())
+            v.fail(pk == "colours" ? "expected an array of [r, g, b], one per plane"
+                                   : "expected an array of alphas, one per plane");
+          for (size_t e = 0; e < pv.size(); ++e)
+            pk == "colours" ? (void)v.element(e).vec3(0, 1) : (void)v.element(e).number(0, 1);
         } else if ((pk == "grid" || pk == "spacing") && pv.is_array()) {
           v.vec3(pk == "grid" ? 1 : 0, 1e4);
         } else {
@@ -548,6 +575,20 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
       (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();
     }
     if (obj.params.is_null()) obj.params = json::object();
+    if (obj.generator == "planes") {
+      for (const json* ps : {&obj.params, &obj.small}) {
+        if (!ps->is_object()) continue;
+        json merged = obj.params;
+        for (const auto& [k, v] : ps->items()) merged[k] = v;
+        size_t count = merged.contains("count") ? merged["count"].get<size_t>() : 128;
+        for (const char* list : {"colours", "alphas"})
+          if (merged.contains(list) && merged[list].size() != count)
+            o.child(ps == &obj.params || !obj.small.contains(list) ? "params" : "small")
+                .child(list)
+                .fail("expected " + std::to_string(count) + " entries (one per plane: count), got " +
+                      std::to_string(merged[list].size()));
+      }
+    }
     s.objects.push_back(std::move(obj));
   }
   parse_light_and_effects(root, s);
@@ -632,7 +673,24 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
   return std::move(b.mesh);
 }
 
+std::optional<std::vector<AnalyticPlane>> analytic_planes(const SceneDesc& scene, Detail detail) {
+  std::vector<AnalyticPlane> out;
+  for (const auto& o : scene.objects) {
+    if (o.generator != "planes") return std::nullopt;
+    json p = o.params;
+    if (detail == Detail::Small && o.small.is_object())
+      for (const auto& [k, v] : o.small.items()) p[k] = v;
+    for (const auto& pl : planes_of(p, scene.material(o.material))) out.push_back(pl);
+  }
+  return out;
+}
+
 glm::mat4 view_projection(const View& view, const Mesh& mesh, float aspect) {
+  glm::vec2 nf = near_far(view, mesh);
+  return glm::perspective(glm::radians(view.fov_deg), aspect, nf.x, nf.y) * glm::lookAt(view.eye, view.target, view.up);
+}
+
+glm::vec2 near_far(const View& view, const Mesh& mesh) {
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (const auto& v : mesh.vertices) {
     lo = glm::min(lo, v.position);
@@ -642,8 +700,7 @@ glm::mat4 view_projection(const View& view, const Mesh& mesh, float aspect) {
   float radius = glm::length(hi - lo) * 0.5f;
   float dist = glm::length(centre - view.eye);
   float near_plane = std::max(0.01f, dist - radius - 0.01f), far_plane = dist + radius + 0.01f;
-  return glm::perspective(glm::radians(view.fov_deg), aspect, near_plane, far_plane) *
-         glm::lookAt(view.eye, view.target, view.up);
+  return {near_plane, far_plane};
 }
 
 }  // namespace oitbench::oit

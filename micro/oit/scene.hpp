@@ -85,9 +85,9 @@ std::string default_scene_dir();  // $OITBENCH_SCENES, else scenes/ beside the b
 
 struct Vertex {
   glm::vec3 position;
-  glm::u8vec4 colour;  // RGBA8, straight alpha
-  glm::vec2 uv;        // used by soft materials
-  float soft;          // 1 for soft materials
+  glm::vec4 colour;  // straight alpha, float: the capture quantises it to the fragment format (frag_colour)
+  glm::vec2 uv;      // used by soft materials
+  float soft;        // 1 for soft materials
 };
 
 struct Mesh {
@@ -102,7 +102,18 @@ struct Mesh {
 // otherwise they stay in `indices` with alpha 1, captured like any other fragment.
 Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque = false);
 
-// The camera's view-projection for an aspect ratio; near and far planes enclose the mesh.
+// The planes generator's planes of a scene, exactly as described (centre, half size, colour, alpha):
+// what the geometric reference (geometric_reference.hpp) intersects pixel rays with. Empty when the
+// scene has an object of another generator, whose answer is not analytic.
+struct AnalyticPlane {
+  glm::dvec3 centre;  // the square faces +z
+  double half_size;
+  glm::vec4 colour;  // as the vertices carry it
+};
+std::optional<std::vector<AnalyticPlane>> analytic_planes(const SceneDesc& scene, Detail detail);
+
+// The camera's view-projection for an aspect ratio; near and far planes (near_far) enclose the mesh.
 glm::mat4 view_projection(const View& view, const Mesh& mesh, float aspect);
+glm::vec2 near_far(const View& view, const Mesh& mesh);
 
 }  // namespace oitbench::oit

@@ -10,10 +10,12 @@ out vec4 vColour;
 out vec2 vUv;
 out float vSoft;
 out vec3 vWorld;
+out float vViewDepth;  // clip w: -z in view space for a perspective projection (frag_depth=view)
 void main() {
   vColour = colour;
   vUv = uv;
   vSoft = soft;
   vWorld = position;
   gl_Position = viewProj * vec4(position, 1.0);
+  vViewDepth = gl_Position.w;
 }

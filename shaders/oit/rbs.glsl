@@ -16,12 +16,12 @@
 //               pixel's list holds sorted runs of RBS_M: the same fragments, so the CPU reference
 //               (which sorts for itself) still applies.
 // Expects (resolve_pixel.glsl): sorts/api.glsl and SORT_T / SORT_GT bound, RBS_M (<= 32), MAX_K
-// (MAX_FRAGS = RBS_M * MAX_K), blend_over(vec3, uvec2), backdrop, the storage API (RBS-G: with
+// (MAX_FRAGS = RBS_M * MAX_K), blend_over(vec3, FRAG_T), backdrop, the storage API (RBS-G: with
 // FRAG_STORE).
 #pragma optionNV(unroll all)
 
 // The binding of the library's API for RS: the block in registers, every index a constant.
-uvec2 registers[RBS_M];
+FRAG_T registers[RBS_M];
 #define SORT_N RBS_M
 #define SORT_SIZE RBS_M
 #define SORT_AT(i) registers[i]
@@ -50,7 +50,7 @@ vec3 resolve_pixel(uint node) {
   return c;
 }
 #elif defined(SORT_RBS)
-uvec2 frags[MAX_FRAGS];  // the sorted blocks (local memory)
+FRAG_T frags[MAX_FRAGS];  // the sorted blocks (local memory)
 
 vec3 resolve_pixel(uint node) {
   int n = 0, k = 0;
@@ -63,7 +63,7 @@ vec3 resolve_pixel(uint node) {
     ++k;
   }
   // k-way merge: the candidate (deepest remaining fragment) of each block stays in a register.
-  uvec2 candidate[MAX_K];
+  FRAG_T candidate[MAX_K];
   int blockIdx[MAX_K], blockEnd[MAX_K];
   for (int j = 0; j < MAX_K; ++j) {
     blockIdx[j] = j * RBS_M;
@@ -73,7 +73,7 @@ vec3 resolve_pixel(uint node) {
   vec3 c = backdrop;
   for (int f = 0; f < n; ++f) {
     int b = -1;
-    uvec2 best = uvec2(0u);
+    FRAG_T best = FRAG_ZERO;
     for (int j = 0; j < MAX_K; ++j)
       if (blockIdx[j] < blockEnd[j] && (b < 0 || FRAG_FARTHER(candidate[j], best))) {  // ties by colour, as everywhere
         b = j;
@@ -107,13 +107,13 @@ vec3 resolve_pixel(uint node) {
     ++k;
   }
   // k-way merge (listing 6): the candidate (deepest unmerged fragment) of each block in a register.
-  uvec2 candidate[MAX_K];
+  FRAG_T candidate[MAX_K];
   for (int j = 0; j < MAX_K; ++j)
     if (j < k) candidate[j] = FRAG_LOAD(blockHead[j]);
   vec3 c = backdrop;
   for (int f = 0; f < n; ++f) {
     int b = -1;
-    uvec2 best = uvec2(0u);
+    FRAG_T best = FRAG_ZERO;
     for (int j = 0; j < MAX_K; ++j)
       if (j < k && blockLeft[j] > 0 && (b < 0 || FRAG_FARTHER(candidate[j], best))) {  // ties by colour, as everywhere
         b = j;

@@ -15,8 +15,8 @@
 // micro/oit/resolve_sort.cpp names the same files for the `sort_source` column.
 // Expects: a storage include, `vec3 backdrop` (set per pixel from backdrop.glsl's backdrop_colour()).
 
-vec3 blend_over(vec3 c, uvec2 frag) {
-  vec4 k = unpackUnorm4x8(frag.x);
+vec3 blend_over(vec3 c, FRAG_T frag) {
+  vec4 k = frag_colour(frag);
   return mix(c, k.rgb, k.a);
 }
 
@@ -27,13 +27,13 @@ vec3 blend_over(vec3 c, uvec2 frag) {
 // The shader library expands each include once, at its first #include, whatever the #if around
 // it: the API comes first, unconditionally.
 #include "../sorts/api.glsl"
-#define SORT_T uvec2
+#define SORT_T FRAG_T
 #define SORT_GT(a, b) FRAG_FARTHER(b, a)
 
 #if defined(SORT_RBS) || defined(SORT_RBS_G)
 #include "rbs.glsl"
 #elif defined(SORT_IS) || defined(SORT_IMS)
-uvec2 frags[MAX_FRAGS];
+FRAG_T frags[MAX_FRAGS];
 int frag_count;  // the pixel's fragments: a run-time loop bound, so the sorts work in local memory
 #define SORT_N MAX_FRAGS
 #define SORT_SIZE frag_count

@@ -102,7 +102,12 @@ TEST_P(EffectPasses, PassRowsAreExactlyThoseTheEffectsAndTheTechniqueNeed) {
   // Rows by case (technique, effects that ran), in file order.
   std::map<std::pair<std::string, std::string>, std::vector<std::string>> rows;
   for (const auto& row : read_csv_rows(csv)) {
-    EXPECT_EQ(row.at("status"), "ok") << row.at("technique") << " " << row.at("effects") << ": " << row.at("reason");
+    // ok, or invalid where a hard-case scene is built to defeat a format (precision-ulp-*: window
+    // depth ties); never an error or unsupported: every effect set runs on every technique.
+    EXPECT_TRUE(row.at("status") == "ok" || row.at("status") == "invalid")
+        << row.at("technique") << " " << row.at("effects") << ": " << row.at("status") << " " << row.at("reason");
+    if (GetParam().rfind("precision-", 0) != 0)
+      EXPECT_EQ(row.at("status"), "ok") << row.at("technique") << " " << row.at("effects") << ": " << row.at("reason");
     rows[{row.at("technique"), row.at("effects")}].push_back(row.at("pass"));
   }
   for (const auto& t : techniques)
@@ -156,8 +161,11 @@ TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
 
 TEST_F(Effects, DroppingTheOpaqueDepthTestFailsEveryTechnique) {
   for (const char* technique : {"BASE-IS", "BMA-RBS-L", "CS-IMS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted"}) {
-    std::map<std::string, std::string> p = {
-        {"scene", "house-opaque"}, {"view", "V1"}, {"technique", technique}, {"detail", "full"}, {"fault", "no-opaque-depth"}};
+    std::map<std::string, std::string> p = {{"scene", "house-opaque"},
+                                            {"view", "V1"},
+                                            {"technique", technique},
+                                            {"detail", "full"},
+                                            {"fault", "no-opaque-depth"}};
     auto v = run_case("oit", p, {96, 96});
     EXPECT_FALSE(v.valid) << technique;
     // The exact techniques keep their fragments: the capture itself is caught; the approximate

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -157,10 +158,10 @@ TEST(Scene, EngineGridIsTheSpecifiedGrid) {
   EXPECT_EQ(build_mesh(s, s.views[0], Detail::Small).polygons(), 4 * engine);
   // Every model material is transparent, each with its own alpha.
   Mesh m = build_mesh(one, s.views[0], Detail::Full);
-  std::set<int> alphas;
+  std::set<float> alphas;
   for (const auto& v : m.vertices) alphas.insert(v.colour.a);
   EXPECT_GE(alphas.size(), 6u);
-  EXPECT_LT(*alphas.rbegin(), 255);
+  EXPECT_LT(*alphas.rbegin(), 1.0f);
 }
 
 // The atrium's stand-in: the site slab ("Erde") is dropped and the glass keeps the file's opacity 0.12.
@@ -168,7 +169,7 @@ TEST(Scene, HouseDropsTheSiteAndKeepsTheGlass) {
   SceneDesc s = load_scene("house");
   Mesh m = build_mesh(s, s.views.front(), Detail::Full);
   size_t glass = 0;
-  for (const auto& v : m.vertices) glass += v.colour.a == static_cast<unsigned char>(0.12f * 255.0f + 0.5f);
+  for (const auto& v : m.vertices) glass += std::abs(v.colour.a - 0.12f) < 1e-6f;
   EXPECT_GT(glass, 0u);
   SceneDesc with_site = s;
   with_site.objects[0].params.erase("exclude_materials");
@@ -204,6 +205,64 @@ TEST(Scene, UnknownSceneListsTheScenes) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("planes"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace oitbench::oit
+
+namespace oitbench::oit {
+namespace {
+
+// Planes placed as data: an offset per object, explicit colours and alphas per plane, exactly as
+// the geometric reference reads them.
+TEST(Scene, PlanesArePlaceableAsData) {
+  SceneDesc s = parse_scene("s.json", R"({
+  "materials": { "glass": { "colour": [1, 0, 0], "alpha": 0.5 } },
+  "objects": [ { "generator": "planes", "material": "glass",
+                 "params": { "count": 2, "depth": 1, "offset": [0.5, -1, -2],
+                             "colours": [[0, 0.25, 1], [1, 1, 0]], "alphas": [0.0001, 1] } } ],
+  "views": { "fwd": { "eye": [0, 0, 3] } }
+})");
+  Mesh m = build_mesh(s, s.view("fwd"), Detail::Full);
+  ASSERT_EQ(m.vertices.size(), 8u);
+  EXPECT_FLOAT_EQ(m.vertices[0].position.z, -1.5f);
+  EXPECT_FLOAT_EQ(m.vertices[4].position.z, -2.5f);
+  EXPECT_FLOAT_EQ(m.vertices[0].position.x, 0.5f - 2.0f);
+  EXPECT_FLOAT_EQ(m.vertices[0].colour.g, 0.25f);
+  EXPECT_FLOAT_EQ(m.vertices[0].colour.a, 0.0001f);  // float vertex colours: no RGBA8 rounding here
+  auto planes = analytic_planes(s, Detail::Full);
+  ASSERT_TRUE(planes.has_value());
+  ASSERT_EQ(planes->size(), 2u);
+  EXPECT_DOUBLE_EQ((*planes)[1].centre.z, -2.5);
+  EXPECT_FLOAT_EQ((*planes)[1].colour.a, 1.0f);
+  EXPECT_FALSE(analytic_planes(load_scene("smoke"), Detail::Small).has_value());
+}
+
+TEST(Scene, PlaneListsMustMatchTheCount) {
+  std::string msg = error_of(R"({
+  "materials": { "glass": { "colour": [1, 0, 0], "alpha": 0.5 } },
+  "objects": [ { "generator": "planes", "material": "glass",
+                 "params": { "count": 3,
+                             "alphas": [0.5, 0.5] } } ],
+  "views": { "fwd": { "eye": [0, 0, 3] } }
+})");
+  EXPECT_EQ(msg.rfind("s.json:5:", 0), 0u) << msg;
+  EXPECT_NE(msg.find("expected 3 entries"), std::string::npos) << msg;
+  msg = error_of(R"({
+  "materials": { "glass": { "colour": [1, 0, 0], "alpha": 0.5 } },
+  "objects": [ { "generator": "planes", "material": "glass",
+                 "params": { "count": 1, "colours": [[2, 0, 0]] } } ],
+  "views": { "fwd": { "eye": [0, 0, 3] } }
+})");
+  EXPECT_EQ(msg.rfind("s.json:4:", 0), 0u) << msg;
+  EXPECT_NE(msg.find("/objects/0/params/colours/0/0"), std::string::npos) << msg;
+}
+
+TEST(Scene, ShippedPrecisionScenesAreAnalytic) {
+  for (const char* name : {"precision-ulp-1", "precision-ulp-3", "precision-ulp-10", "precision-ties-ab",
+                           "precision-ties-ba", "precision-faint-1000", "precision-faint-5000", "precision-alpha-0-1",
+                           "precision-near-far", "precision-opaque-between", "planes", "planes-deep"})
+    EXPECT_TRUE(analytic_planes(load_scene(name), Detail::Small).has_value()) << name;
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ uniform uint poolSize;  // the scan's total, so this never drops a fragment; a g
 void store_fragment(ivec2 p, vec4 rgba, float depth) {
   if (frag_fault_drop(p)) return;
   uint slot = atomicAdd(fragOffsets[frag_pixel_index(p)], 1u);
-  if (slot < poolSize) imageStore(nodeData, int(slot), uvec4(frag_pack(rgba, depth), 0u, 0u));
+  if (slot < poolSize) frag_store(slot, frag_pack(rgba, depth));
 }
 #else
 #error "a PPPA capture program is either STORAGE_PPPA_COUNT or STORAGE_PPPA_FILL"

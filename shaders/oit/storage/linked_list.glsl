@@ -26,7 +26,7 @@ void store_fragment(ivec2 p, vec4 rgba, float depth) {
   imageAtomicAdd(fragCounts, p, 1u);
 #endif
   if (node < poolSize && !frag_fault_drop(p)) {
-    imageStore(nodeData, int(node), uvec4(frag_pack(rgba, depth), 0u, 0u));
+    frag_store(node, frag_pack(rgba, depth));
     imageStore(nodeNext, int(node), uvec4(imageAtomicExchange(headPointers, p, node)));
   }
 }
