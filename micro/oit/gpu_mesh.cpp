@@ -1,18 +1,32 @@
 #include "oit/gpu_mesh.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace oitbench::oit {
 
+namespace {
+
+// An immutable buffer of `data`; an empty list still gets storage (glNamedBufferStorage refuses 0 bytes).
+void upload(const gl::Buffer& b, const std::vector<unsigned>& data) {
+  glNamedBufferStorage(b.get(), static_cast<GLsizeiptr>(std::max<size_t>(data.size(), 1) * sizeof(unsigned)),
+                       data.empty() ? nullptr : data.data(), 0);
+}
+
+}  // namespace
+
 GpuMesh::GpuMesh(const Mesh& mesh)
     : vertices_(gl::make_buffer()),
       indices_(gl::make_buffer()),
+      lines_(gl::make_buffer()),
       vao_(gl::make_vertex_array()),
-      index_count_(mesh.indices.size()) {
-  glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(Vertex)),
-                       mesh.vertices.data(), 0);
-  glNamedBufferStorage(indices_.get(), static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(unsigned)),
-                       mesh.indices.data(), 0);
+      triangles_(mesh.indices.size() / 3),
+      segments_(mesh.segments()) {
+  glNamedBufferStorage(vertices_.get(),
+                       static_cast<GLsizeiptr>(std::max<size_t>(mesh.vertices.size(), 1) * sizeof(Vertex)),
+                       mesh.vertices.empty() ? nullptr : mesh.vertices.data(), 0);
+  upload(indices_, mesh.indices);
+  upload(lines_, mesh.line_indices);
   GLuint vao = vao_.get();
   glVertexArrayVertexBuffer(vao, 0, vertices_.get(), 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vao, indices_.get());
@@ -30,7 +44,16 @@ GpuMesh::GpuMesh(const Mesh& mesh)
 
 void GpuMesh::draw() const {
   glBindVertexArray(vao_.get());
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count_), GL_UNSIGNED_INT, nullptr);
+  if (triangles_ > 0) glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * triangles_), GL_UNSIGNED_INT, nullptr);
+  if (segments_ > 0) draw_lines(0, segments_);
+}
+
+void GpuMesh::draw_lines(GLuint elements, size_t segments) const {
+  if (segments == 0) return;
+  glVertexArrayElementBuffer(vao_.get(), elements ? elements : lines_.get());
+  glBindVertexArray(vao_.get());
+  glDrawElements(GL_LINES, static_cast<GLsizei>(2 * segments), GL_UNSIGNED_INT, nullptr);
+  glVertexArrayElementBuffer(vao_.get(), indices_.get());
 }
 
 }  // namespace oitbench::oit
