@@ -196,6 +196,26 @@ void gen_planes(Builder& b, const json& p, const Material& m) {
   }
 }
 
+// One step of a tube: an open `sides`-sided prism of radius `r` from `pos` to `next`, one primitive.
+void tube_segment(Builder& b, glm::vec3 pos, glm::vec3 next, int sides, double r, glm::vec4 c) {
+  glm::vec3 axis = glm::normalize(next - pos);
+  glm::vec3 ref = std::abs(axis.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  glm::vec3 u = glm::normalize(glm::cross(axis, ref)), v = glm::cross(axis, u);
+  b.begin();
+  unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
+  for (int i = 0; i < sides; ++i) {
+    double a = 6.283185307179586 * i / sides;
+    glm::vec3 off = (u * static_cast<float>(std::cos(a)) + v * static_cast<float>(std::sin(a))) * static_cast<float>(r);
+    b.vertex(pos + off, c);
+    b.vertex(next + off, c);
+  }
+  for (int i = 0; i < sides; ++i) {
+    unsigned a0 = first + 2 * i, a1 = a0 + 1, b0 = first + 2 * ((i + 1) % sides), b1 = b0 + 1;
+    b.quad(a0, b0, b1, a1);
+  }
+  b.end((pos + next) * 0.5f);
+}
+
 // A tangle of thin tubes inside a sphere: `strands` random walks of `segments` steps, each step a
 // `sides`-sided open tube. Generated strand by strand, step by step (a modelling package's order).
 void gen_hairball(Builder& b, const json& p, const Material& m) {
@@ -215,23 +235,7 @@ void gen_hairball(Builder& b, const json& p, const Material& m) {
         dir = glm::normalize(glm::reflect(dir, glm::normalize(next)));
         next = pos + dir * static_cast<float>(step);
       }
-      glm::vec3 axis = glm::normalize(next - pos);
-      glm::vec3 ref = std::abs(axis.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-      glm::vec3 u = glm::normalize(glm::cross(axis, ref)), v = glm::cross(axis, u);
-      b.begin();
-      unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
-      for (int i = 0; i < sides; ++i) {
-        double a = 6.283185307179586 * i / sides;
-        glm::vec3 off =
-            (u * static_cast<float>(std::cos(a)) + v * static_cast<float>(std::sin(a))) * static_cast<float>(r);
-        b.vertex(pos + off, c);
-        b.vertex(next + off, c);
-      }
-      for (int i = 0; i < sides; ++i) {
-        unsigned a0 = first + 2 * i, a1 = a0 + 1, b0 = first + 2 * ((i + 1) % sides), b1 = b0 + 1;
-        b.quad(a0, b0, b1, a1);
-      }
-      b.end((pos + next) * 0.5f);
+      tube_segment(b, pos, next, sides, r, c);
       pos = next;
     }
   }
@@ -243,6 +247,8 @@ void gen_hairball(Builder& b, const json& p, const Material& m) {
 // `segment_length` steps that starts along the sphere's normal and bends down by `gravity` per step,
 // sideways by up to `curl`. A strand's colour is one of four hair tones (shaded a little per strand)
 // mixed with the material's colour (`colour_mix`: the tones' share). Generated strand by strand.
+// `sides` 0 makes line segments (one primitive each); 3 or more makes the hairball's open tubes of
+// `tube_radius` instead (triangles, one primitive per step), the same strands as surfaces.
 void gen_strands(Builder& b, const json& p, const Material& m) {
   const size_t segments = static_cast<size_t>(param(p, "segments", 90000));
   const int per_strand = std::max(1, static_cast<int>(param(p, "per_strand", 16)));
@@ -252,6 +258,8 @@ void gen_strands(Builder& b, const json& p, const Material& m) {
               curl = static_cast<float>(param(p, "curl", 0.15)),
               lowest = static_cast<float>(param(p, "lowest_root", -0.3)),
               mix = static_cast<float>(param(p, "colour_mix", 0.75));
+  const int sides = static_cast<int>(param(p, "sides", 0));
+  const double tube_radius = param(p, "tube_radius", 0.004);
   Rng rng(static_cast<unsigned long long>(param(p, "seed", 1)));
   const glm::vec3 tones[] = {
       {0.45f, 0.30f, 0.18f}, {0.60f, 0.45f, 0.25f}, {0.30f, 0.20f, 0.12f}, {0.75f, 0.62f, 0.40f}};
@@ -264,12 +272,17 @@ void gen_strands(Builder& b, const json& p, const Material& m) {
     glm::vec3 tone =
         tones[static_cast<int>(rng.uniform() * 4) % 4] * static_cast<float>(0.85 + 0.15 * rng.range(-1, 1));
     glm::vec4 c(glm::mix(m.colour, tone, mix), m.alpha);
-    unsigned prev = b.vertex(pos, c);
+    unsigned prev = sides ? 0 : b.vertex(pos, c);
     for (int s = 0; s < per_strand && made < segments; ++s, ++made) {
+      glm::vec3 from = pos;
       pos += step * dir;
-      unsigned next = b.vertex(pos, c);
-      b.segment(prev, next);
-      prev = next;
+      if (sides) {
+        tube_segment(b, from, pos, sides, tube_radius, c);
+      } else {
+        unsigned next = b.vertex(pos, c);
+        b.segment(prev, next);
+        prev = next;
+      }
       glm::vec3 bend(static_cast<float>(rng.range(-curl, curl)), -gravity, static_cast<float>(rng.range(-curl, curl)));
       dir = glm::normalize(dir + bend);
     }
@@ -603,7 +616,9 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
         } else if (pk == "lowest_root") {
           v.number(-1, 1);
         } else {
-          v.number(0, pk == "colour_mix" ? 1 : 1e7);
+          double x = v.number(0, pk == "colour_mix" ? 1 : 1e7);
+          if (pk == "sides" && obj.generator == "strands" && x > 0 && x < 3)
+            v.fail("expected 0 (line segments) or 3 and more (tubes), got " + std::to_string(static_cast<int>(x)));
         }
       }
       (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();

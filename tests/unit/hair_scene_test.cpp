@@ -95,6 +95,27 @@ TEST(HairScene, StrandParametersAreChecked) {
   EXPECT_EQ(build_mesh(s, s.views[0], Detail::Full).vertices.size(), 100u + 13u);  // 13 strands, one root each
 }
 
+TEST(HairScene, StrandsAsTubesAreTheHairballsSurfaces) {
+  const std::string text =
+      R"({"materials": {"x": {}}, "objects": [{"generator": "strands", "material": "x", "params": {"segments": 50, "sides": SIDES}}], "views": {"v": {"eye": [0, 0, 3]}}})";
+  auto with_sides = [&](const std::string& sides) {
+    std::string t = text;
+    t.replace(t.find("SIDES"), 5, sides);
+    return t;
+  };
+  SceneDesc s = parse_scene("h.json", with_sides("3"));
+  Mesh m = build_mesh(s, s.views[0], Detail::Full);
+  EXPECT_EQ(m.segments(), 0u);
+  EXPECT_EQ(m.triangles(), 50u * 3 * 2);  // a 3-sided open tube per step: 3 quads
+  try {
+    parse_scene("h.json", with_sides("2"));
+    FAIL() << "2 sides";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/objects/0/params/sides: expected 0 (line segments) or 3"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(HairScene, SelfShadowingNeedsTheLight) {
   try {
     parse_scene("h.json", R"({"effects": ["transparency", "self-shadowing"], "materials": {"x": {}},
