@@ -35,7 +35,7 @@ RMSE_FLOOR = 1e-6  # exact techniques tie at this rmse, as on plot.py's error-ag
 # The project brief's targets for exact OIT on this renderer.
 TARGET_RESOLVE_VS_CPU = 2.0  # best shader resolve within this factor of CPU-NATIVE's
 TARGET_CAPTURE_RATE = 30e6  # fragments per second captured
-SCENE_ORDER = ["planes", "hairball", "smoke", "engine-grid", "house", "planes-deep"]
+SCENE_ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house", "planes-deep"]
 # Our stand-ins for the papers' models (scenes/engine-grid.json, scenes/house.json).
 PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
 EXACT_SHADER = ["BASE-IS", "BASE-IMS", "BASE-RBS-L", "RBS-G", "CS-IS", "CS-IMS", "CS-RBS-L", "BMA-IS", "BMA-IMS",

@@ -11,7 +11,7 @@ import statistics
 import sys
 from pathlib import Path
 
-ORDER = ["planes", "hairball", "smoke", "engine-grid", "house"]
+ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house"]
 # Our stand-ins for the paper's models (scenes/engine-grid.json, scenes/house.json): same view names.
 PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
 TECHNIQUES = ["BASE-IS", "BASE-IMS", "BASE-RBS-L", "RBS-G", "CS-IS", "CS-IMS", "CS-RBS-L",

@@ -1,6 +1,6 @@
 // lines: transparency of line primitives (Sintorn et al., poster: hair as line segments sorted per
-// primitive into 256 depth slices by a stream-split radix sort in CUDA). A procedural hair model of
-// `segments` line segments is rendered
+// primitive into 256 depth slices by a stream-split radix sort in CUDA). The line strands of a scene
+// (scenes/hair.json: the `strands` generator), `segments` of them, are rendered from one of its views
 //   technique=exact:  per fragment: linked-list capture + the exact BASE-IMS resolve (oit experiment)
 //   technique=slices: per primitive: each segment's depth slice, a stable radix sort (count, prefix
 //                     sum, scatter per bit, in compute shaders), then one back-to-front blended draw
@@ -8,19 +8,21 @@
 // the per-fragment exact reference is data (`rmse` etc.), since slices are an approximation.
 #include <algorithm>
 #include <cmath>
-#include <glm/gtc/matrix_transform.hpp>
+#include <cstddef>
 #include <memory>
 #include <numeric>
-#include <random>
+#include <stdexcept>
 #include <string>
 
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
 #include "oit/fragment_lists.hpp"
+#include "oit/gpu_mesh.hpp"
 #include "oit/image_compare.hpp"
 #include "oit/metrics.hpp"
 #include "oit/reference.hpp"
 #include "oit/resolve_sort.hpp"
+#include "oit/scene.hpp"
 
 namespace oitbench {
 
@@ -28,42 +30,25 @@ namespace {
 
 using namespace oit;
 
-struct LineVertex {  // matches shaders/lines/*.comp's Vertex and capture.vert's locations 0 and 1
-  glm::vec4 position;
-  glm::vec4 colour;
-};
-
-constexpr float kHeadRadius = 0.5f, kCameraDistance = 3.0f;
-
-// Strands of 16 segments growing from a sphere: a random walk that starts along the normal and bends
-// down under "gravity", with colours of a few hair tones quantised to RGBA8 (what the capture stores).
-std::vector<LineVertex> make_hair(size_t segments, float alpha, unsigned seed) {
-  constexpr int kPerStrand = 16;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  const glm::vec3 tones[] = {
-      {0.45f, 0.30f, 0.18f}, {0.60f, 0.45f, 0.25f}, {0.30f, 0.20f, 0.12f}, {0.75f, 0.62f, 0.40f}};
-  auto q = [](float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; };
-  std::vector<LineVertex> v;
-  v.reserve(segments * 2);
-  while (v.size() < segments * 2) {
-    glm::vec3 n;
-    do n = {u(rng), u(rng), u(rng)};
-    while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
-    n = glm::normalize(n);
-    if (n.y < -0.3f) continue;  // no hair under the chin
-    glm::vec3 p = n * kHeadRadius, dir = n;
-    glm::vec3 tone = tones[rng() % 4] * (0.85f + 0.15f * u(rng));
-    glm::vec4 c(q(tone.r), q(tone.g), q(tone.b), q(alpha));
-    for (int s = 0; s < kPerStrand && v.size() < segments * 2; ++s) {
-      glm::vec3 next = p + 0.06f * dir;
-      v.push_back({glm::vec4(p, 1), c});
-      v.push_back({glm::vec4(next, 1), c});
-      p = next;
-      dir = glm::normalize(dir + glm::vec3(0.15f * u(rng), -0.12f, 0.15f * u(rng)));
-    }
-  }
-  return v;
+// The scene with its strands' segment count set to `segments` (0: the file's own), split evenly over
+// its strands objects; the scene's line primitives for `view`, its triangles left out.
+Mesh hair_mesh(SceneDesc scene, const View& view, long long segments) {
+  std::vector<SceneObject*> strands;
+  for (auto& o : scene.objects)
+    if (o.generator == "strands") strands.push_back(&o);
+  if (strands.empty())
+    throw std::runtime_error("lines: scene \"" + scene.name + "\" (" + scene.path +
+                             ") has no line strands; give it an object with \"generator\": \"strands\" "
+                             "(scenes/hair.json)");
+  if (segments > 0)
+    for (size_t k = 0; k < strands.size(); ++k)
+      strands[k]->params["segments"] = segments / static_cast<long long>(strands.size()) +
+                                       (k == 0 ? segments % static_cast<long long>(strands.size()) : 0);
+  Mesh mesh = build_mesh(scene, view, Detail::Full);
+  if (mesh.segments() == 0) throw std::runtime_error("lines: scene \"" + scene.name + "\" makes no line segments");
+  mesh.indices.clear();
+  mesh.opaque_indices.clear();
+  return mesh;
 }
 
 unsigned next_pow2(unsigned v) {
@@ -74,26 +59,30 @@ unsigned next_pow2(unsigned v) {
 
 class LinesCase final : public CaseInstance {
  public:
-  LinesCase(const ParamSet& p, CaseContext& ctx)
+  LinesCase(const ParamSet& p, CaseContext& ctx, const SceneDesc& scene)
+      : LinesCase(p, ctx, scene, scene.view(p.get("view")),
+                  hair_mesh(scene, scene.view(p.get("view")), p.get_int("segments"))) {}
+
+ private:
+  LinesCase(const ParamSet& p, CaseContext& ctx, const SceneDesc& scene, const View& view, const Mesh& mesh)
       : ctx_(ctx),
         slices_mode_(p.get("technique") == "slices"),
-        segments_(static_cast<size_t>(p.get_int("segments"))),
         slices_(static_cast<int>(p.get_int("slices"))),
+        background_(scene.background),
+        view_proj_(view_projection(view, mesh, static_cast<float>(ctx.width()) / ctx.height())),
         target_(ctx.width(), ctx.height()),
+        mesh_(std::make_unique<GpuMesh>(mesh)),
+        segments_(mesh.segments()),
         lists_(ctx.width(), ctx.height(), segments_ * 8, false) {
-    auto verts = make_hair(segments_, static_cast<float>(p.get_double("alpha")), ctx.seed());
-    vertices_ = gl::make_buffer();
-    glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(verts.size() * sizeof(LineVertex)), verts.data(), 0);
-    vao_ = gl::make_vertex_array();
-    glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, sizeof(LineVertex));
-    for (GLuint a : {0u, 1u}) {
-      glEnableVertexArrayAttrib(vao_.get(), a);
-      glVertexArrayAttribFormat(vao_.get(), a, a == 0 ? 3 : 4, GL_FLOAT, GL_FALSE, a == 0 ? 0 : 16);
-      glVertexArrayAttribBinding(vao_.get(), a, 0);
+    // The depth range cut into slices: the segments' vertices' distances along the view direction.
+    const glm::vec3 forward = glm::normalize(view.target - view.eye);
+    float near_distance = 1e30f, far_distance = -1e30f;
+    for (unsigned v : mesh.line_indices) {
+      float w = glm::dot(mesh.vertices[v].position - view.eye, forward);
+      near_distance = std::min(near_distance, w);
+      far_distance = std::max(far_distance, w);
     }
-    float aspect = static_cast<float>(ctx.width()) / ctx.height();
-    view_proj_ = glm::perspective(glm::radians(40.0f), aspect, 1.0f, 6.0f) *
-                 glm::lookAt(glm::vec3(0, 0.1f, kCameraDistance), glm::vec3(0, -0.1f, 0), glm::vec3(0, 1, 0));
+    far_distance = std::max(far_distance, near_distance + 1e-6f);
     capture_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}}, {});
     glProgramUniformMatrix4fv(capture_.get(), glGetUniformLocation(capture_.get(), "viewProj"), 1, GL_FALSE,
                               &view_proj_[0][0]);
@@ -113,16 +102,15 @@ class LinesCase final : public CaseInstance {
     if (slices_ & (slices_ - 1)) throw std::invalid_argument("slices must be a power of two");
     bits_ = 0;
     while ((1 << bits_) < slices_) ++bits_;
-    const Defines slice_defines = {{"SLICES", std::to_string(slices_)}};
+    static_assert(sizeof(Vertex) % sizeof(float) == 0 && offsetof(Vertex, position) == 0,
+                  "shaders/lines/slice_keys.comp reads Vertex as floats, the position first");
+    const Defines slice_defines = {{"SLICES", std::to_string(slices_)},
+                                   {"VERTEX_FLOATS", std::to_string(sizeof(Vertex) / sizeof(float))}};
     keys_prog_ = ctx.build({{GL_COMPUTE_SHADER, "lines/slice_keys.comp"}}, slice_defines);
     glProgramUniformMatrix4fv(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "viewProj"), 1, GL_FALSE,
                               &view_proj_[0][0]);
-    // The hair lies within the head radius plus the longest strand: that depth range is cut into slices.
-    const float reach = kHeadRadius + 16 * 0.06f;
-    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "nearDistance"),
-                       kCameraDistance - reach);
-    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "farDistance"),
-                       kCameraDistance + reach);
+    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "nearDistance"), near_distance);
+    glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "farDistance"), far_distance);
     for (const char* phase : {"PHASE_LOCAL", "PHASE_BLOCKS", "PHASE_SCATTER"})
       split_.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
     emit_ = ctx.build({{GL_COMPUTE_SHADER, "lines/emit_indices.comp"}}, {});
@@ -140,6 +128,7 @@ class LinesCase final : public CaseInstance {
     glNamedBufferStorage(elements_.get(), 2 * n, nullptr, 0);
   }
 
+ public:
   void run(PassTimer& timer) override {
     if (!slices_mode_) {
       {
@@ -161,9 +150,10 @@ class LinesCase final : public CaseInstance {
     const GLuint groups = static_cast<GLuint>((segments_ + 255) / 256), count = static_cast<GLuint>(segments_);
     {
       auto t = timer.pass("keys");
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mesh_->vertex_buffer());
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, keys0_.get());
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, index0_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, mesh_->line_index_buffer());
       glUseProgram(keys_prog_.get());
       glUniform1ui(glGetUniformLocation(keys_prog_.get(), "segments"), count);
       glDispatchCompute(groups, 1, 1);
@@ -190,6 +180,7 @@ class LinesCase final : public CaseInstance {
       }
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sorted_index().get());
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, elements_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, mesh_->line_index_buffer());
       glUseProgram(emit_.get());
       glUniform1ui(glGetUniformLocation(emit_.get(), "segments"), count);
       glDispatchCompute(groups, 1, 1);
@@ -202,9 +193,7 @@ class LinesCase final : public CaseInstance {
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     glUseProgram(blend_.get());
-    glVertexArrayElementBuffer(vao_.get(), elements_.get());
-    glBindVertexArray(vao_.get());
-    glDrawElements(GL_LINES, static_cast<GLsizei>(2 * segments_), GL_UNSIGNED_INT, nullptr);
+    mesh_->draw_lines(elements_.get(), segments_);
     glDisable(GL_BLEND);
   }
 
@@ -264,27 +253,24 @@ class LinesCase final : public CaseInstance {
   void capture() {
     target_.bind();
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    lists_.capture({capture_.get()}, [&] {
-      glBindVertexArray(vao_.get());
-      glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(2 * segments_));
-    });
+    lists_.capture({capture_.get()}, [&] { mesh_->draw(); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
 
   CaseContext ctx_;
   bool slices_mode_;
-  size_t segments_;
   int slices_, bits_ = 0;
   unsigned max_frags_ = 0;
-  glm::vec3 background_{1.0f, 1.0f, 1.0f};
+  glm::vec3 background_;  // the scene's backdrop behind the hair
   glm::mat4 view_proj_{1.0f};
   RenderTarget target_;
+  std::unique_ptr<GpuMesh> mesh_;  // the scene's line strands only
+  size_t segments_;
   FullscreenTriangle quad_;
   FragmentLists lists_;
   ListStats stats_;
   std::vector<double> reference_;
-  gl::Buffer vertices_, keys0_, index0_, keys_[2], index_[2], local_, blocks_, elements_;
-  gl::VertexArray vao_;
+  gl::Buffer keys0_, index0_, keys_[2], index_[2], local_, blocks_, elements_;
   gl::Program capture_, resolve_, keys_prog_, emit_, blend_;
   std::vector<gl::Program> split_;
 };
@@ -293,8 +279,9 @@ class LinesExperiment final : public Experiment {
  public:
   std::string name() const override { return "lines"; }
   std::string description() const override {
-    return "hair as line segments (Sintorn et al. poster): per-fragment exact OIT vs a per-primitive stream-split "
-           "radix sort into depth slices, blended back to front; time and error against exact";
+    return "hair as line segments (Sintorn et al. poster), the line strands of a scene (scenes/hair.json): "
+           "per-fragment exact OIT vs a per-primitive stream-split radix sort into depth slices, blended back to "
+           "front; time and error against exact";
   }
   std::vector<ParamSpec> params() const override {
     ParamSpec technique{"technique",
@@ -303,18 +290,27 @@ class LinesExperiment final : public Experiment {
                         {},
                         {"exact", "slices"}};
     ParamSpec segments{"segments",
-                       "line segments (the poster's models: 90 K to 1.8 M)",
-                       {"90000", "620000", "1800000"},
+                       "line segments, split over the scene's strands (the poster's models: beard 90 K, woman2 320 K, "
+                       "woman1 620 K, dog 1.8 M); 0: as many as the scene file says",
+                       {"90000", "320000", "620000", "1800000"},
                        {"20000"},
                        {},
                        ParamSpec::Kind::Integer,
-                       16,
+                       0,
                        50000000};
     ParamSpec slices{
         "slices", "depth slices of the primitive sort (a power of two)", {"256"}, {}, {}, ParamSpec::Kind::Integer, 2,
         65536};
-    ParamSpec alpha{"alpha", "opacity of every hair segment", {"0.3"}, {}, {}, ParamSpec::Kind::Number, 0, 1};
-    return {technique, segments, slices, alpha};
+    // The scene and view columns are oit's too, and the schema takes the first experiment's wording: it fits both.
+    ParamSpec scene{"scene",
+                    "scene name in scenes/ (shipped: planes, planes-deep, hairball, hair, smoke, engine-grid, house) "
+                    "or a path to a scene .json; lines draws its line strands only",
+                    {"hair"},
+                    {},
+                    {}};
+    ParamSpec view{
+        "view", "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)", {"fwd"}, {}, {}};
+    return {technique, segments, slices, scene, view};
   }
   std::vector<MetricSpec> metric_specs() const override {
     std::vector<MetricSpec> m = {{"line_segments", ValueType::Integer, "", "line segments drawn"},
@@ -330,7 +326,11 @@ class LinesExperiment final : public Experiment {
     return gl.has_compute() ? "" : "needs compute shaders (GL 4.3)";
   }
   std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
-    return std::make_unique<LinesCase>(p, ctx);
+    try {
+      return std::make_unique<LinesCase>(p, ctx, load_scene(p.get("scene")));
+    } catch (const SceneError& e) {
+      throw std::runtime_error(std::string("lines: ") + e.what());
+    }
   }
 };
 

@@ -41,7 +41,8 @@ class OitExperiment final : public Experiment {
   }
   std::vector<ParamSpec> params() const override {
     ParamSpec scene{"scene",
-                    "scene name in scenes/ (or a path to a scene .json)",
+                    "scene name in scenes/ (shipped: planes, planes-deep, hairball, hair, smoke, engine-grid, house) "
+                    "or a path to a scene .json",
                     {"planes", "hairball", "smoke"},
                     {"planes", "hairball"},
                     {}};

@@ -5,19 +5,32 @@
 
 namespace oitbench::oit {
 
-GpuMesh::GpuMesh(const Mesh& mesh) : GpuMesh(mesh, mesh.indices) {}
+namespace {
 
-GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& indices)
+// An immutable buffer of `data`; an empty list still gets storage (glNamedBufferStorage refuses 0 bytes).
+void upload(const gl::Buffer& b, const std::vector<unsigned>& data) {
+  glNamedBufferStorage(b.get(), static_cast<GLsizeiptr>(std::max<size_t>(data.size(), 1) * sizeof(unsigned)),
+                       data.empty() ? nullptr : data.data(), 0);
+}
+
+}  // namespace
+
+GpuMesh::GpuMesh(const Mesh& mesh) : GpuMesh(mesh, mesh.indices, mesh.line_indices) {}
+
+GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& triangles) : GpuMesh(mesh, triangles, {}) {}
+
+GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& triangles, const std::vector<unsigned>& lines)
     : vertices_(gl::make_buffer()),
       indices_(gl::make_buffer()),
+      lines_(gl::make_buffer()),
       vao_(gl::make_vertex_array()),
-      index_count_(indices.size()) {
-  glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(Vertex)),
-                       mesh.vertices.data(), 0);
-  // An empty buffer store is invalid in GL: a mesh without such triangles keeps one unused index.
-  const unsigned none = 0;
-  glNamedBufferStorage(indices_.get(), static_cast<GLsizeiptr>(std::max<size_t>(indices.size(), 1) * sizeof(unsigned)),
-                       indices.empty() ? &none : indices.data(), 0);
+      triangles_(triangles.size() / 3),
+      segments_(lines.size() / 2) {
+  glNamedBufferStorage(vertices_.get(),
+                       static_cast<GLsizeiptr>(std::max<size_t>(mesh.vertices.size(), 1) * sizeof(Vertex)),
+                       mesh.vertices.empty() ? nullptr : mesh.vertices.data(), 0);
+  upload(indices_, triangles);
+  upload(lines_, lines);
   GLuint vao = vao_.get();
   glVertexArrayVertexBuffer(vao, 0, vertices_.get(), 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vao, indices_.get());
@@ -34,9 +47,17 @@ GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& indices)
 }
 
 void GpuMesh::draw() const {
-  if (index_count_ == 0) return;
   glBindVertexArray(vao_.get());
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count_), GL_UNSIGNED_INT, nullptr);
+  if (triangles_ > 0) glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * triangles_), GL_UNSIGNED_INT, nullptr);
+  if (segments_ > 0) draw_lines(0, segments_);
+}
+
+void GpuMesh::draw_lines(GLuint elements, size_t segments) const {
+  if (segments == 0) return;
+  glVertexArrayElementBuffer(vao_.get(), elements ? elements : lines_.get());
+  glBindVertexArray(vao_.get());
+  glDrawElements(GL_LINES, static_cast<GLsizei>(2 * segments), GL_UNSIGNED_INT, nullptr);
+  glVertexArrayElementBuffer(vao_.get(), indices_.get());
 }
 
 }  // namespace oitbench::oit

@@ -22,7 +22,7 @@ inline std::vector<MetricSpec> image_error_metrics() {
 // What the captured view holds.
 inline std::vector<MetricSpec> fragment_metrics() {
   using T = ValueType;
-  return {{"polygons", T::Integer, "", "primitives drawn per capture"},
+  return {{"polygons", T::Integer, "", "primitives drawn per capture (triangles plus line segments)"},
           {"total_fragments", T::Integer, "", "fragments captured in the view"},
           {"peak_depth", T::Integer, "", "most fragments in one pixel"},
           {"mean_depth", T::Number, "", "fragments per covered pixel"}};

@@ -99,7 +99,7 @@ class Node {
   std::vector<std::string> keys_;
 };
 
-const std::vector<std::string> kGenerators = {"planes", "hairball", "smoke", "model"};
+const std::vector<std::string> kGenerators = {"planes", "hairball", "strands", "smoke", "model"};
 
 SubmitOrder parse_order(const Node& n) {
   auto s = n.str();
@@ -109,21 +109,32 @@ SubmitOrder parse_order(const Node& n) {
   n.fail("expected \"as-generated\", \"front-to-back\" or \"back-to-front\", got \"" + s + "\"");
 }
 
-// ---- generators: each appends primitives (groups of triangles) with one centroid per group ----
+// ---- generators: each appends primitives (groups of triangles, or one line segment) with one
+// centroid per group ----
 
 struct Builder {
   Mesh mesh;
   std::vector<glm::vec3> centroids;               // per group
-  std::vector<std::pair<size_t, size_t>> groups;  // [first index, index count)
+  std::vector<std::pair<size_t, size_t>> groups;  // [first index, index count) in indices or line_indices
   std::vector<bool> group_opaque;                 // per group: made of an opaque material
+  std::vector<bool> group_lines;                  // per group: a line segment (indices in line_indices)
   bool opaque = false;                            // the material of the groups begun next
   void begin() {
     groups.push_back({mesh.indices.size(), 0});
     group_opaque.push_back(opaque);
+    group_lines.push_back(false);
   }
   void end(glm::vec3 centroid) {
     groups.back().second = mesh.indices.size() - groups.back().first;
     centroids.push_back(centroid);
+  }
+  // One line segment: a group of its own, so the view's submission order sorts segments.
+  void segment(unsigned a, unsigned b) {
+    groups.push_back({mesh.line_indices.size(), 2});
+    group_opaque.push_back(opaque);
+    group_lines.push_back(true);
+    mesh.line_indices.insert(mesh.line_indices.end(), {a, b});
+    centroids.push_back((mesh.vertices[a].position + mesh.vertices[b].position) * 0.5f);
   }
   unsigned vertex(glm::vec3 p, glm::vec4 c, glm::vec2 uv = {0, 0}, float soft = 0) {
     mesh.vertices.push_back({p, glm::clamp(c, 0.0f, 1.0f), uv, soft});
@@ -201,6 +212,26 @@ void gen_planes(Builder& b, const json& p, const Material& m) {
   }
 }
 
+// One step of a tube: an open `sides`-sided prism of radius `r` from `pos` to `next`, one primitive.
+void tube_segment(Builder& b, glm::vec3 pos, glm::vec3 next, int sides, double r, glm::vec4 c) {
+  glm::vec3 axis = glm::normalize(next - pos);
+  glm::vec3 ref = std::abs(axis.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  glm::vec3 u = glm::normalize(glm::cross(axis, ref)), v = glm::cross(axis, u);
+  b.begin();
+  unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
+  for (int i = 0; i < sides; ++i) {
+    double a = 6.283185307179586 * i / sides;
+    glm::vec3 off = (u * static_cast<float>(std::cos(a)) + v * static_cast<float>(std::sin(a))) * static_cast<float>(r);
+    b.vertex(pos + off, c);
+    b.vertex(next + off, c);
+  }
+  for (int i = 0; i < sides; ++i) {
+    unsigned a0 = first + 2 * i, a1 = a0 + 1, b0 = first + 2 * ((i + 1) % sides), b1 = b0 + 1;
+    b.quad(a0, b0, b1, a1);
+  }
+  b.end((pos + next) * 0.5f);
+}
+
 // A tangle of thin tubes inside a sphere: `strands` random walks of `segments` steps, each step a
 // `sides`-sided open tube. Generated strand by strand, step by step (a modelling package's order).
 void gen_hairball(Builder& b, const json& p, const Material& m) {
@@ -220,24 +251,56 @@ void gen_hairball(Builder& b, const json& p, const Material& m) {
         dir = glm::normalize(glm::reflect(dir, glm::normalize(next)));
         next = pos + dir * static_cast<float>(step);
       }
-      glm::vec3 axis = glm::normalize(next - pos);
-      glm::vec3 ref = std::abs(axis.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-      glm::vec3 u = glm::normalize(glm::cross(axis, ref)), v = glm::cross(axis, u);
-      b.begin();
-      unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
-      for (int i = 0; i < sides; ++i) {
-        double a = 6.283185307179586 * i / sides;
-        glm::vec3 off =
-            (u * static_cast<float>(std::cos(a)) + v * static_cast<float>(std::sin(a))) * static_cast<float>(r);
-        b.vertex(pos + off, c);
-        b.vertex(next + off, c);
-      }
-      for (int i = 0; i < sides; ++i) {
-        unsigned a0 = first + 2 * i, a1 = a0 + 1, b0 = first + 2 * ((i + 1) % sides), b1 = b0 + 1;
-        b.quad(a0, b0, b1, a1);
-      }
-      b.end((pos + next) * 0.5f);
+      tube_segment(b, pos, next, sides, r, c);
       pos = next;
+    }
+  }
+}
+
+// Hair as line strands (Sintorn et al.'s poster renders hair as line segments): `segments` segments
+// in strands of `per_strand`, rooted on a head sphere of `head_radius` (no roots below
+// y = `lowest_root` x radius: no hair under the chin). Each strand is a random walk of
+// `segment_length` steps that starts along the sphere's normal and bends down by `gravity` per step,
+// sideways by up to `curl`. A strand's colour is one of four hair tones (shaded a little per strand)
+// mixed with the material's colour (`colour_mix`: the tones' share). Generated strand by strand.
+// `sides` 0 makes line segments (one primitive each); 3 or more makes the hairball's open tubes of
+// `tube_radius` instead (triangles, one primitive per step), the same strands as surfaces.
+void gen_strands(Builder& b, const json& p, const Material& m) {
+  const size_t segments = static_cast<size_t>(param(p, "segments", 90000));
+  const int per_strand = std::max(1, static_cast<int>(param(p, "per_strand", 16)));
+  const float head = static_cast<float>(param(p, "head_radius", 0.5)),
+              step = static_cast<float>(param(p, "segment_length", 0.06)),
+              gravity = static_cast<float>(param(p, "gravity", 0.12)),
+              curl = static_cast<float>(param(p, "curl", 0.15)),
+              lowest = static_cast<float>(param(p, "lowest_root", -0.3)),
+              mix = static_cast<float>(param(p, "colour_mix", 0.75));
+  const int sides = static_cast<int>(param(p, "sides", 0));
+  const double tube_radius = param(p, "tube_radius", 0.004);
+  Rng rng(static_cast<unsigned long long>(param(p, "seed", 1)));
+  const glm::vec3 tones[] = {
+      {0.45f, 0.30f, 0.18f}, {0.60f, 0.45f, 0.25f}, {0.30f, 0.20f, 0.12f}, {0.75f, 0.62f, 0.40f}};
+  b.mesh.vertices.reserve(b.mesh.vertices.size() + segments + segments / per_strand + 1);
+  size_t made = 0;
+  while (made < segments) {
+    glm::vec3 n = rng.unit();
+    if (n.y < lowest) continue;
+    glm::vec3 pos = n * head, dir = n;
+    glm::vec3 tone =
+        tones[static_cast<int>(rng.uniform() * 4) % 4] * static_cast<float>(0.85 + 0.15 * rng.range(-1, 1));
+    glm::vec4 c(glm::mix(m.colour, tone, mix), m.alpha);
+    unsigned prev = sides ? 0 : b.vertex(pos, c);
+    for (int s = 0; s < per_strand && made < segments; ++s, ++made) {
+      glm::vec3 from = pos;
+      pos += step * dir;
+      if (sides) {
+        tube_segment(b, from, pos, sides, tube_radius, c);
+      } else {
+        unsigned next = b.vertex(pos, c);
+        b.segment(prev, next);
+        prev = next;
+      }
+      glm::vec3 bend(static_cast<float>(rng.range(-curl, curl)), -gravity, static_cast<float>(rng.range(-curl, curl)));
+      dir = glm::normalize(dir + bend);
     }
   }
 }
@@ -411,6 +474,10 @@ void parse_light_and_effects(const Node& root, SceneDesc& s) {
   bool any_opaque = false, any_transparent = false;
   for (const auto& o : s.objects) {
     const auto& m = s.material(o.material);
+    if (o.generator == "strands") {  // line segments are always captured (Mesh::line_indices)
+      any_transparent = true;
+      continue;
+    }
     (m.opaque ? any_opaque : any_transparent) = true;
     // a model can hold opaque and transparent materials of its own (params "opaque_unless_translucent")
     if (o.generator == "model" && o.params.value("opaque_unless_translucent", false))
@@ -507,11 +574,11 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     auto o = objs.element(i);
     o.expect_object({"generator", "material", "params", "small", "file"});
     SceneObject obj;
-    if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, smoke, model");
+    if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, strands, smoke, model");
     obj.generator = o.child("generator").str();
     if (std::find(kGenerators.begin(), kGenerators.end(), obj.generator) == kGenerators.end())
       o.child("generator")
-          .fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, smoke or model");
+          .fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, strands, smoke or model");
     if (obj.generator == "model") {
       if (!o.has("file")) o.fail("expected \"file\": the model file (searched in model_roots)");
       obj.file = o.child("file").str();
@@ -535,6 +602,11 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
                         "radius",
                         "wiggle",
                         "seed",
+                        "per_strand",
+                        "head_radius",
+                        "gravity",
+                        "curl",
+                        "lowest_root",
                         "size",
                         "spread",
                         "height",
@@ -568,8 +640,12 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
             pk == "colours" ? (void)v.element(e).vec3(0, 1) : (void)v.element(e).number(0, 1);
         } else if ((pk == "grid" || pk == "spacing") && pv.is_array()) {
           v.vec3(pk == "grid" ? 1 : 0, 1e4);
+        } else if (pk == "lowest_root") {
+          v.number(-1, 1);
         } else {
-          v.number(0, pk == "colour_mix" ? 1 : 1e7);
+          double x = v.number(0, pk == "colour_mix" ? 1 : 1e7);
+          if (pk == "sides" && obj.generator == "strands" && x > 0 && x < 3)
+            v.fail("expected 0 (line segments) or 3 and more (tubes), got " + std::to_string(static_cast<int>(x)));
         }
       }
       (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();
@@ -646,6 +722,8 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
       gen_planes(b, p, m);
     else if (o.generator == "hairball")
       gen_hairball(b, p, m);
+    else if (o.generator == "strands")
+      gen_strands(b, p, m);
     else if (o.generator == "model")
       gen_model(b, p, m, resolve_model(scene, o.file));
     else
@@ -661,15 +739,21 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
     std::stable_sort(order.begin(), order.end(),
                      [&](size_t a, size_t c) { return front_to_back ? dist[a] < dist[c] : dist[a] > dist[c]; });
   }
-  std::vector<unsigned> indices, opaque;
+  std::vector<unsigned> indices, opaque, lines;
   indices.reserve(b.mesh.indices.size());
+  lines.reserve(b.mesh.line_indices.size());
   for (size_t g : order) {
     auto [first, count] = b.groups[g];
+    if (b.group_lines[g]) {
+      lines.insert(lines.end(), b.mesh.line_indices.begin() + first, b.mesh.line_indices.begin() + first + count);
+      continue;
+    }
     auto& out = split_opaque && b.group_opaque[g] ? opaque : indices;
     out.insert(out.end(), b.mesh.indices.begin() + first, b.mesh.indices.begin() + first + count);
   }
   b.mesh.indices = std::move(indices);
   b.mesh.opaque_indices = std::move(opaque);
+  b.mesh.line_indices = std::move(lines);
   return std::move(b.mesh);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Scenes as data: a JSON file in scenes/ names the materials, the objects (each made by a procedural
 // generator), the effects the scene needs and the camera views. The format is documented in
-// scenes/README.md; build_mesh() turns one view of a scene into triangles in submission order.
+// scenes/README.md; build_mesh() turns one view of a scene into triangles and line segments in
+// submission order.
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -53,7 +54,7 @@ struct Light {
 const std::vector<std::string>& effect_names();
 
 struct SceneObject {
-  std::string generator;  // planes | hairball | smoke | model
+  std::string generator;  // planes | hairball | strands | smoke | model
   std::string file;       // model: the model file, resolved against the scene's model_roots
   nlohmann::json params;  // the generator's parameters, "small" overrides already applied when asked
   nlohmann::json small;   // overrides for the small (quick/test) size
@@ -94,10 +95,17 @@ struct Mesh {
   std::vector<Vertex> vertices;
   std::vector<unsigned> indices;         // transparent triangles, in submission order
   std::vector<unsigned> opaque_indices;  // opaque triangles (only when built with split_opaque)
-  size_t polygons() const { return (indices.size() + opaque_indices.size()) / 3; }
+  // Line segments (hair strands), two vertex indices each, in submission order; drawn as GL_LINES
+  // after the triangles. Always captured: a strand of an opaque material has alpha 1 but stays here.
+  std::vector<unsigned> line_indices;
+  size_t triangles() const { return (indices.size() + opaque_indices.size()) / 3; }
+  size_t segments() const { return line_indices.size() / 2; }
+  // Primitives: triangles plus line segments (what the `polygons` metric counts).
+  size_t polygons() const { return triangles() + segments(); }
 };
 
-// Generates every object for `view` (billboards face its eye) and orders the primitives as the view asks.
+// Generates every object for `view` (billboards face its eye) and orders the primitives (a triangle
+// group, or one line segment) as the view asks.
 // split_opaque: primitives of opaque materials go to opaque_indices (the opaque effect draws them);
 // otherwise they stay in `indices` with alpha 1, captured like any other fragment.
 Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque = false);

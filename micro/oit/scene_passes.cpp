@@ -81,7 +81,10 @@ ScenePasses::ScenePasses(const ParamSet& p, CaseContext& ctx)
     shadow_ = make_self_shadowing(ctx, scene_, mesh_, p);
     if (shadow_) shadow_->build();
   }
-  if (!has("transparency")) mesh_.indices.clear();  // nothing transparent is drawn
+  if (!has("transparency")) {  // nothing transparent is drawn
+    mesh_.indices.clear();
+    mesh_.line_indices.clear();
+  }
   transparent_ = std::make_unique<GpuMesh>(mesh_);
   view_proj_ = oit::view_projection(view_, mesh_, static_cast<float>(width_) / height_);
   if (opaque) {

@@ -83,10 +83,11 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
       glm::perspective(glm::radians(light.fov_deg), 1.0f, near_, far_) * glm::lookAt(light.eye, light.target, light.up);
 
   vertices_ = make_storage(static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(Vertex)), mesh.vertices.data());
-  // Every primitive casts a shadow: the transparent triangles, then the opaque ones.
+  // Every primitive casts a shadow: the transparent triangles, the opaque ones, then the line segments.
   std::vector<unsigned> triangles(mesh.indices);
   triangles.insert(triangles.end(), mesh.opaque_indices.begin(), mesh.opaque_indices.end());
-  std::vector<std::pair<GLenum, const std::vector<unsigned>*>> lists = {{GL_TRIANGLES, &triangles}};
+  std::vector<std::pair<GLenum, const std::vector<unsigned>*>> lists = {{GL_TRIANGLES, &triangles},
+                                                                        {GL_LINES, &mesh.line_indices}};
   size_t base = 0;
   for (const auto& [mode, list] : lists) {
     PrimitiveSet set;
@@ -104,8 +105,7 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
     set.elements = make_storage(set.vertices * n);
     set.bounds = make_storage(static_cast<GLsizeiptr>(2 * slices_ * sizeof(unsigned)));
     set.commands = make_storage(static_cast<GLsizeiptr>(5 * slices_ * sizeof(unsigned)));
-    const Defines primitive = {{"INDEXED_PRIMITIVES", ""},
-                               {"PRIMITIVE_VERTICES", std::to_string(set.vertices)},
+    const Defines primitive = {{"PRIMITIVE_VERTICES", std::to_string(set.vertices)},
                                {"VERTEX_FLOATS", std::to_string(kVertexFloats)},
                                {"SLICES", std::to_string(slices_)}};
     set.keys_prog = ctx.build({{GL_COMPUTE_SHADER, "lines/slice_keys.comp"}}, primitive);
@@ -130,7 +130,7 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
   glEnableVertexArrayAttrib(vao, 0);
   glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
   glEnableVertexArrayAttrib(vao, 1);
-  glVertexArrayAttribFormat(vao, 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(Vertex, colour));
+  glVertexArrayAttribFormat(vao, 1, 4, GL_FLOAT, GL_FALSE, offsetof(Vertex, colour));
   glEnableVertexArrayAttrib(vao, 2);
   glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
   glEnableVertexArrayAttrib(vao, 3);

@@ -3,7 +3,7 @@
 // scene's primitives seen from its light, as in Sintorn & Assarsson 2008 and the hair poster.
 //   shadow-sort  each primitive's depth slice in the light's view and the stable stream-split radix
 //                sort of the lines experiment (shaders/lines/{slice_keys,split,emit_indices}.comp,
-//                with INDEXED_PRIMITIVES), so that each slice is one range of an element buffer
+//                PRIMITIVE_VERTICES 2 or 3), so that each slice is one range of an element buffer
 //   shadow-map   each slice's primitives drawn from the light into its layer of a 3D texture,
 //                adding optical depth -log(1 - alpha) (Kim & Neumann 2001), then a prefix over the
 //                layers: layer k holds what lies in front of slice k

@@ -7,7 +7,7 @@ import subprocess
 import unittest
 
 import synthetic as syn
-from support import PYTHON, TempDirTest, run_script
+from support import PYTHON, TempDirTest, oitbench_exe, run_oitbench, run_script
 
 PAPER_HEADER = "source,table,gpu,resolution,scene,view,technique,size,metric,unit,value\n"
 MINI_PAPER = PAPER_HEADER + "".join(
@@ -199,6 +199,22 @@ class TablesFromReferenceRuns(unittest.TestCase):
                          "--table", "sintorn").stdout
         self.assertRegex(out, r"\| dog \| 1800000 \| 25 \| [0-9.]+ \| [0-9.]+ \|")
         self.assertIn("| woman2 | 320000 | 50 | — | — |", out)
+
+
+@unittest.skipUnless(oitbench_exe(), "needs the built binary (OITBENCH_EXE)")
+class TablesFromAFreshLinesRun(TempDirTest):
+    """The poster's table from rows the lines experiment writes now (scenes/hair.json at two of the poster's
+    sizes, tiny and one repetition): ours fill the models run, the others stay empty."""
+
+    def test_the_poster_table_reads_a_run_of_the_hair_scene(self):
+        out = self.path("lines.csv")
+        run_oitbench("run", "lines", "--set", "technique=exact,slices", "--set", "scene=hair",
+                     "--set", "segments=90000,320000", "--resolution", "32x32", "--reps", "1", "--warmup", "0",
+                     "--no-progress", "--out", out)
+        table = run_script("tables.py", out, "--paper", PUBLISHED, "--table", "sintorn").stdout
+        self.assertRegex(table, r"\| beard \| 90000 \| 120 \| [0-9.]+ \| [0-9.]+ \|")
+        self.assertRegex(table, r"\| woman2 \| 320000 \| 50 \| [0-9.]+ \| [0-9.]+ \|")
+        self.assertIn("| dog | 1800000 | 25 | — | — |", table)
 
 
 if __name__ == "__main__":

@@ -29,7 +29,7 @@ const char* kMinimal = R"({
 })";
 
 TEST(Scene, ShippedScenesLoadWithTheirViews) {
-  for (const char* name : {"planes", "hairball", "smoke"}) {
+  for (const char* name : {"planes", "hairball", "hair", "smoke"}) {
     SceneDesc s = load_scene(name);
     EXPECT_EQ(s.name, name);
     EXPECT_NO_THROW(s.view("fwd"));
