@@ -20,10 +20,10 @@ namespace {
 
 using namespace oit;
 
-std::vector<std::string> all_techniques() {  // exact, approximate, depth peeling
+std::vector<std::string> all_techniques() {  // exact, depth peeling, approximate
   std::vector<std::string> t = exact_technique_names();
-  for (const auto& a : approx_technique_names()) t.push_back(a);
   for (const auto& a : peel_technique_names()) t.push_back(a);
+  for (const auto& a : approx_technique_names()) t.push_back(a);
   return t;
 }
 

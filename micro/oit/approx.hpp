@@ -16,9 +16,9 @@
 
 namespace oitbench::oit {
 
-enum class ApproxTechnique { Mlab, Umlab, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted, Ht };
+enum class ApproxTechnique { Mlab, Umlab, Ht, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted };
 
-const std::vector<std::string>& approx_technique_names();  // MLAB UMLAB AT HAT UAT UHAT LAAT WBOIT unsorted HT
+const std::vector<std::string>& approx_technique_names();  // MLAB UMLAB HT AT HAT UAT UHAT LAAT WBOIT unsorted
 bool is_approx_technique(const std::string& name);
 ApproxTechnique parse_approx_technique(const std::string& name);  // throws std::invalid_argument
 

@@ -27,8 +27,9 @@ namespace {
 constexpr double kModelTolerance = 3.0 / 255.0;
 constexpr int kSpinCap = 1 << 16;
 
-const std::vector<std::string> kNames = {"MLAB", "UMLAB", "AT",    "HAT",      "UAT",
-                                         "UHAT", "LAAT",  "WBOIT", "unsorted", "HT"};
+// The order `oitbench list` and the viewer's T key step through (the enum's, approx.hpp).
+const std::vector<std::string> kNames = {"MLAB", "UMLAB", "HT",   "AT",    "HAT",
+                                         "UAT",  "UHAT",  "LAAT", "WBOIT", "unsorted"};
 
 std::string fmt(double v) {
   std::ostringstream s;
