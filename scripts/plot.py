@@ -452,7 +452,7 @@ def error_vs_memory(ax, rows, column, title):
         ax.legend(fontsize=7, loc="upper right")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("bytes per pixel (the technique's storage)")
+    ax.set_xlabel("bytes per pixel (the technique's storage; 0 drawn at 1)")
     ax.set_ylabel(f"{column} against exact (floor {floor:g})")
     ax.grid(True, which="both", alpha=0.3)
     ax.set_title(f"{column} against memory: {title}", fontsize=9)
