@@ -236,6 +236,7 @@ class PeelCase final : public OitCase {
           glClearTexImage(back_key_[next].get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
                           settings_.depth_only ? &key_max : &key_zero);
         glBindFramebuffer(GL_FRAMEBUFFER, tie_fbo_.get());
+        glBindTextureUnit(PEEL_NEXT_MINMAX_UNIT, minmax_[next].get());
         glUniform1i(pass_uniform_, 1);
         glBeginQuery(GL_SAMPLES_PASSED, query_.get());
         mesh_->draw();
@@ -348,7 +349,8 @@ class PeelCase final : public OitCase {
   }
   void bind_state(int prev, int next) const {
     glBindTextureUnit(PEEL_PREV_MINMAX_UNIT, minmax_[prev].get());
-    glBindTextureUnit(PEEL_NEXT_MINMAX_UNIT, minmax_[next].get());
+    // The target being drawn is not bound for sampling (a feedback loop); the tie pass binds it.
+    glBindTextureUnit(PEEL_NEXT_MINMAX_UNIT, minmax_[prev].get());
     glBindImageTexture(PEEL_PREV_FRONT_IMAGE, front_key_[prev].get(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(PEEL_NEXT_FRONT_IMAGE, front_key_[next].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     if (settings_.dual) {
