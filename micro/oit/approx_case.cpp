@@ -237,6 +237,7 @@ class ApproxCase final : public OitCase {
         glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 0, zero);
         if (ht_) glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 1, zero);
         glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE);
         glUseProgram(blend_.get());
         mesh_->draw();

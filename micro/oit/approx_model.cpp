@@ -323,7 +323,7 @@ ApproxModel approx_model(const HostLists& l, glm::vec3 bg, const ApproxSettings&
       glm::vec3 tail(0.0f);
       float tail_t = 1.0f;
       if (count > 0.0f) {
-        tail_t = std::pow(1.0f - sum.w / count, count);
+        tail_t = std::pow(std::clamp(1.0f - sum.w / count, 0.0f, 1.0f), count);
         if (sum.w > 0.0f) tail = glm::vec3(sum) / sum.w * (1.0f - tail_t);
       }
       c = acc + t * (tail + tail_t * bg);

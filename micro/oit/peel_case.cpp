@@ -230,6 +230,8 @@ class PeelCase final : public OitCase {
         mesh_->draw();
         ++passes_;
         glDisable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);  // every draw buffer back to GL's default: later passes set only funcs
+        glBlendFunc(GL_ONE, GL_ZERO);
         // Tie: the colour keys of the new layers; the query counts their fragments.
         glClearTexImage(front_key_[next].get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &key_max);
         if (settings_.dual)

@@ -75,7 +75,8 @@ void main() {
   vec3 tail = vec3(0.0);
   float tailT = 1.0;
   if (n > 0.0) {
-    tailT = pow(1.0 - acc.a / n, n);
+    // Clamped: opaque tails sum their alphas to n, and a rounding above it gave pow() a negative base (NaN).
+    tailT = pow(clamp(1.0 - acc.a / n, 0.0, 1.0), n);
     if (acc.a > 0.0) tail = acc.rgb / acc.a * (1.0 - tailT);
   }
   c += t * (tail + tailT * backdrop_colour(p));

@@ -126,6 +126,18 @@ TEST_F(Peel, HybridTransparencyIsExactWithACoreAsDeepAsThePixelsAndErrsWithLess)
   EXPECT_EQ(few.metrics.at("capped_updates"), "0");
 }
 
+TEST_F(Peel, PeelingLeavesNoBlendStateForTheNextCase) {
+  // The peel's MAX blending of its min-max target once stayed on draw buffer 1, where HT's tail then
+  // took the max of its count instead of the sum.
+  for (const char* t : {"DP", "DDP"}) {
+    ASSERT_TRUE(run_case("oit", params("hairball", t)).valid) << t;
+    auto p = params("hairball", "HT");
+    p["nodes"] = "4";
+    auto v = run_case("oit", p);
+    EXPECT_TRUE(v.valid) << "HT after " << t << ": " << v.reason;
+  }
+}
+
 TEST_F(Peel, EveryTechniqueRowCarriesItsBytesPerPixel) {
   std::vector<std::string> all = oit::exact_technique_names();
   for (const auto& a : oit::approx_technique_names()) all.push_back(a);
