@@ -342,7 +342,8 @@ def plot_spinlock(data):
 ERROR_COLUMNS = ("rmse", "max_abs_error")
 
 
-OIT_APPROX = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT", "unsorted"}
+OIT_APPROX = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT", "unsorted", "HT"}
+OIT_PEEL = {"DP", "DDP"}
 
 
 def oit_label(row):
@@ -352,6 +353,8 @@ def oit_label(row):
         t += f"/{row['nodes']}"
     if t == "WBOIT" and row.get("wboit_weight"):
         t += f"/{row['wboit_weight']}"
+    if t in OIT_PEEL and row.get("max_layers") not in (None, "", "0"):
+        t += f"/{row['max_layers']}"
     # Fragment formats other than the papers' (rgba8, window depth) are part of the case's name.
     for col, default in (("frag_colour", "rgba8"), ("frag_depth", "window")):
         if row.get(col) and row[col] != default:
@@ -489,16 +492,18 @@ def effects_panel(ax, rows, passes, title, legend):
 
 @plotter("oit")
 def plot_oit(data):
-    """One column per (scene, view, resolution): stacked pass times per technique on top, and below the
-    error against the exact reference against total time, every technique a point, with the Pareto
-    front (nothing both faster and more exact) marked: which technique to pick for an error budget."""
+    """One column per (scene, view, resolution): stacked pass times per technique on top, below it the
+    error against the exact reference against total time, every technique a point sized by its memory
+    (bytes_per_pixel), with the Pareto front (nothing both faster and more exact) marked, and at the
+    bottom the error against memory with its own front: pick by error, time and memory at once."""
     totals = data.total_rows()
     key_cols = [c for c in ("scene", "view", "width") if any(r.get(c) for r in totals)]
     groups = dict(list(group_rows(totals, key_cols).items())[:MAX_FACETS])
     error_col = next((c for c in ERROR_COLUMNS if any(oitcsv.to_float(r.get(c)) is not None for r in totals)), None)
     ncols = max(len(groups), 1)
     formats = has_formats(totals)
-    nrows = (2 if error_col else 1) + (1 if formats else 0)
+    memory = error_col is not None and any(oitcsv.to_float(r.get("bytes_per_pixel")) is not None for r in totals)
+    nrows = ((3 if memory else 2) if error_col else 1) + (1 if formats else 0)
     fig, axes = plt.subplots(nrows, ncols, figsize=(max(7.0, 6.0 * ncols), 5.2 * nrows + 0.8), squeeze=False)
     for i, (gkey, grows) in enumerate(groups.items()):
         title = ", ".join(f"{c}={grows[0].get(c)}" for c in key_cols)
@@ -510,25 +515,38 @@ def plot_oit(data):
             stacked_passes(axes[0][i], rel, [r for r in rel.ok if r["pass"] == "total"], title, legend=(i == 0))
         if error_col:
             error_vs_time(axes[1][i], grows, error_col, title)
+        if memory:
+            error_vs_memory(axes[2][i], grows, error_col, title)
         if formats:
             format_cost(axes[nrows - 1][i], grows, title)
-    fig.suptitle(title_of(data, "techniques: pass times, and error against time"), fontsize=10)
+    fig.suptitle(title_of(data, "techniques: pass times, error against time" + (" and memory" if memory else "")),
+                 fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.95))
     return fig
+
+
+def marker_area(bytes_per_pixel, largest):
+    """Marker area in points^2 proportional to memory (12 to 200), 28 where a row has no bytes_per_pixel."""
+    if bytes_per_pixel is None or not largest:
+        return 28
+    return 12 + 188 * bytes_per_pixel / largest
 
 
 def error_vs_time(ax, rows, column, title):
     with_effects = effects_vary(rows)
     points = [(value(r), oitcsv.to_float(r.get(column)), oit_effects_label(r, with_effects).split("\n")[0] +
-               (f" [{r.get('effects')}]" if with_effects else "")) for r in rows
-              if oitcsv.to_float(r.get(column)) is not None and value(r) is not None]
+               (f" [{r.get('effects')}]" if with_effects else ""), oitcsv.to_float(r.get("bytes_per_pixel")))
+              for r in rows if oitcsv.to_float(r.get(column)) is not None and value(r) is not None]
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     families = sorted({p[2].split("/")[0] for p in points})
     floor = 1e-6  # exact techniques (error ~1e-8) sit on the floor of the log axis
-    for t, e, label in points:
+    largest = max((p[3] for p in points if p[3] is not None), default=None)
+    for t, e, label, mem in points:
         fam = label.split("/")[0]
-        ax.scatter(t, max(e, floor), color=colors[families.index(fam) % len(colors)], s=28, zorder=3)
+        ax.scatter(t, max(e, floor), color=colors[families.index(fam) % len(colors)], s=marker_area(mem, largest),
+                   alpha=0.8, zorder=3)
         ax.annotate(label, (t, max(e, floor)), fontsize=6, xytext=(3, 2), textcoords="offset points")
+    points = [p[:3] for p in points]
     front = pareto_front([(t, max(e, floor), l) for t, e, l in points])
     if front:
         ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="tab:red", linewidth=1.0,
@@ -541,7 +559,34 @@ def error_vs_time(ax, rows, column, title):
     ax.set_xlabel("total median time (ms)")
     ax.set_ylabel(f"{column} against exact (floor {floor:g})")
     ax.grid(True, which="both", alpha=0.3)
-    ax.set_title(f"{column} against time: {title}", fontsize=9)
+    title_note = f" (marker area: bytes/pixel, largest {largest:g})" if largest else ""
+    ax.set_title(f"{column} against time: {title}{title_note}", fontsize=9)
+
+
+def error_vs_memory(ax, rows, column, title):
+    """Error against bytes_per_pixel, every technique a point, with the front of nothing both smaller
+    and more exact."""
+    points = [(oitcsv.to_float(r.get("bytes_per_pixel")), oitcsv.to_float(r.get(column)), oit_label(r))
+              for r in rows if oitcsv.to_float(r.get(column)) is not None
+              and oitcsv.to_float(r.get("bytes_per_pixel")) is not None]
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    families = sorted({p[2].split("/")[0] for p in points})
+    floor = 1e-6
+    for b, e, label in points:
+        fam = label.split("/")[0]
+        ax.scatter(max(b, 1.0), max(e, floor), color=colors[families.index(fam) % len(colors)], s=28, zorder=3)
+        ax.annotate(label, (max(b, 1.0), max(e, floor)), fontsize=6, xytext=(3, 2), textcoords="offset points")
+    front = pareto_front([(max(b, 1.0), max(e, floor), l) for b, e, l in points])
+    if front:
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="tab:red", linewidth=1.0,
+                linestyle="--", label="Pareto front")
+        ax.legend(fontsize=7, loc="upper right")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("bytes per pixel (the technique's storage; 0 drawn at 1)")
+    ax.set_ylabel(f"{column} against exact (floor {floor:g})")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set_title(f"{column} against memory: {title}", fontsize=9)
 
 
 def stacked_passes(ax, data, totals, title, legend=True):

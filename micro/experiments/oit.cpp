@@ -13,6 +13,7 @@
 #include "oit/fragment_storage.hpp"
 #include "oit/metrics.hpp"
 #include "oit/oit_case.hpp"
+#include "oit/peel.hpp"
 #include "oit/scene.hpp"
 #include "oit/scene_passes.hpp"
 
@@ -22,8 +23,9 @@ namespace {
 
 using namespace oit;
 
-std::vector<std::string> all_techniques() {  // exact, then approximate
+std::vector<std::string> all_techniques() {  // exact, depth peeling, approximate
   std::vector<std::string> t = exact_technique_names();
+  for (const auto& a : peel_technique_names()) t.push_back(a);
   for (const auto& a : approx_technique_names()) t.push_back(a);
   return t;
 }
@@ -37,7 +39,9 @@ class OitExperiment final : public Experiment {
            "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
            "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, "
            "micro/oit/approx.cpp) "
-           "is validated against each technique's own CPU model, its error vs the exact image reported as data";
+           "is validated against each technique's own CPU model, its error vs the exact image reported as data. "
+           "Depth peeling (Everitt 2001 DP, Bavoil & Myers 2008 DDP, micro/oit/peel_case.cpp) is exact when it "
+           "peels every layer, validated against a CPU model of the layers it peeled when max_layers stops it";
   }
   std::vector<ParamSpec> params() const override {
     ParamSpec scene{"scene",
@@ -51,14 +55,16 @@ class OitExperiment final : public Experiment {
                    {"fwd", "rev"},
                    {},
                    {}};
-    ParamSpec technique{"technique",
-                        "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
-                        "a stencil mask; CS-* a compute pass; RBS-G blocks sorted in place in global memory; "
-                        "IS insertion, IMS insertion+merge, RBS-L register block sort; BMA-AUTO the "
-                        "per-interval sort calibrated on this driver (cached); MLAB..unsorted: approximate",
-                        exact_technique_names(),
-                        {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"},
-                        all_techniques()};
+    ParamSpec technique{
+        "technique",
+        "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
+        "a stencil mask; CS-* a compute pass; RBS-G blocks sorted in place in global memory; "
+        "IS insertion, IMS insertion+merge, RBS-L register block sort; BMA-AUTO the "
+        "per-interval sort calibrated on this driver (cached); MLAB..unsorted, HT: approximate; DP, DDP: depth "
+        "peeling",
+        exact_technique_names(),
+        {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"},
+        all_techniques()};
     ParamSpec detail{
         "detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"}, {"full", "small"}};
     ParamSpec block{"block", "RBS block size MAX_REGISTERS (the paper: 32)", {"32"}, {"8"}, {"4", "8", "16", "32"}};
@@ -145,6 +151,7 @@ class OitExperiment final : public Experiment {
         scene,     view,     technique,  effects_param(), capture,           detail,      block,     pool,
         max_frags, cs_group, auto_cache, shadow_slices,   shadow_resolution, frag_colour, frag_depth};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
+    for (auto& a : peel_params()) ps.push_back(std::move(a));
     return ps;
   }
   std::vector<MetricSpec> metric_specs() const override {
@@ -194,7 +201,15 @@ class OitExperiment final : public Experiment {
          "self-shadowing: largest optical-depth difference between the GPU map and the CPU map of the same slices"},
         {"shadow_light_fragments", T::Integer, "", "self-shadowing: fragments seen from the light"},
         {"shadow_map_bytes", T::Integer, "bytes",
-         "self-shadowing: GPU memory of the map (3D texture) and of its primitive sort"}};
+         "self-shadowing: GPU memory of the map (3D texture) and of its primitive sort"},
+        // depth peeling (micro/oit/peel_case.cpp)
+        {"layers_peeled", T::Integer, "", "DP, DDP: layers peeled in the deepest pixel"},
+        {"peel_passes", T::Integer, "", "DP, DDP: geometry passes of one frame (two per iteration)"},
+        {"peel_complete", T::Text, "",
+         "DP, DDP: yes when the occlusion query found no fragment left (exact), no when max_layers stopped it"},
+        {"bytes_per_pixel", T::Number, "bytes",
+         "the technique's per-pixel storage at this resolution (fragment pool, node arrays, accumulation and "
+         "peeling targets; not the output image)"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());
     for (auto& x : image_error_metrics()) m.push_back(std::move(x));

@@ -1,8 +1,9 @@
 #pragma once
 // Approximate OIT (Brüll 2018, sections 2.3, 3.5-3.7, chapters 5 and 6): per-pixel arrays of n
 // nodes filled under a per-pixel spinlock (MLAB, UMLAB, AT, HAT, UAT, UHAT), weighted blended OIT
-// (McGuire & Bavoil 2013) and plain unsorted blending. This header is their catalogue and the
-// oit experiment's case for them (approx_case.cpp); each technique's CPU model, which a GPU image
+// (McGuire & Bavoil 2013), plain unsorted blending and hybrid transparency (HT, Maule, Comba,
+// Torchelsen, Bastos 2013: a k-buffer core of the n nearest fragments, the tail averaged). This header is their
+// catalogue and the oit experiment's case for them (approx_case.cpp); each technique's CPU model, which a GPU image
 // must match to be valid, is in approx_model.hpp; the error against the exact reference, reported
 // as data, in image_compare.hpp.
 #include <memory>
@@ -15,9 +16,9 @@
 
 namespace oitbench::oit {
 
-enum class ApproxTechnique { Mlab, Umlab, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted };
+enum class ApproxTechnique { Mlab, Umlab, Ht, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted };
 
-const std::vector<std::string>& approx_technique_names();  // MLAB UMLAB AT HAT UAT UHAT LAAT WBOIT unsorted
+const std::vector<std::string>& approx_technique_names();  // MLAB UMLAB HT AT HAT UAT UHAT LAAT WBOIT unsorted
 bool is_approx_technique(const std::string& name);
 ApproxTechnique parse_approx_technique(const std::string& name);  // throws std::invalid_argument
 

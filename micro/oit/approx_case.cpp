@@ -30,7 +30,9 @@ namespace {
 constexpr double kModelTolerance = 3.0 / 255.0;
 constexpr int kSpinCap = 1 << 16;
 
-const std::vector<std::string> kNames = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT", "unsorted"};
+// The order `oitbench list` and the viewer's T key step through (the enum's, approx.hpp).
+const std::vector<std::string> kNames = {"MLAB", "UMLAB", "HT",   "AT",    "HAT",
+                                         "UAT",  "UHAT",  "LAAT", "WBOIT", "unsorted"};
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -51,11 +53,11 @@ ApproxTechnique parse_approx_technique(const std::string& name) {
 }
 std::vector<ParamSpec> approx_params() {
   using K = ParamSpec::Kind;
-  const std::vector<std::string> arrays = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT"};
+  const std::vector<std::string> arrays = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT", "HT"};
   const std::vector<std::string> guarded = {"AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT"};
   std::vector<ParamSpec> ps = {
       {"nodes",
-       "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16)",
+       "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16); HT: its core's fragments",
        {"8"},
        {},
        {},
@@ -120,7 +122,8 @@ class ApproxCase final : public OitCase {
     using T = ApproxTechnique;
     const T tech = settings_.technique;
     arrays_ = tech != T::Wboit && tech != T::Unsorted;
-    at_family_ = arrays_ && tech != T::Mlab && tech != T::Umlab;
+    ht_ = tech == T::Ht;
+    at_family_ = arrays_ && tech != T::Mlab && tech != T::Umlab && !ht_;
     bool interlock = p.get("sync") == "interlock";
     if (arrays_ && interlock && !ctx.gl().has_extension("GL_ARB_fragment_shader_interlock"))
       throw Unsupported("sync=interlock needs GL_ARB_fragment_shader_interlock");
@@ -179,10 +182,17 @@ class ApproxCase final : public OitCase {
       glNamedBufferStorage(stats_.get(), sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
       insert_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/insert.frag"}}, d);
       set_view_proj(insert_, vp);
-      if (at_family_) {
-        blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/at_blend.frag"}}, d);
+      if (at_family_ || ht_) {
+        const char* pass2 = ht_ ? "approx/ht_tail.frag" : "approx/at_blend.frag";
+        blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, pass2}}, d);
         set_view_proj(blend_, vp);
       }
+      if (ht_) {  // the tail's fragment count beside its sums
+        reveal_ = gl::make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(reveal_.get(), 1, GL_R32F, width_, height_);
+        glNamedFramebufferTexture(accum_.framebuffer(), GL_COLOR_ATTACHMENT1, reveal_.get(), 0);
+      }
+      bytes_per_pixel_ = slots * 8.0 + 4.0 + (at_family_ || ht_ ? 16.0 : 0.0) + (ht_ ? 4.0 : 0.0);
       resolve_ =
           ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/resolve.frag"}}, d);
     } else if (tech == T::Wboit) {
@@ -196,6 +206,7 @@ class ApproxCase final : public OitCase {
       glNamedFramebufferTexture(accum_.framebuffer(), GL_COLOR_ATTACHMENT1, reveal_.get(), 0);
       resolve_ = ctx.build(
           {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
+      bytes_per_pixel_ = 16.0 + 4.0;
     } else {
       blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
@@ -240,12 +251,16 @@ class ApproxCase final : public OitCase {
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         StorageResources::barrier();
       }
-      if (at_family_) {
-        auto t = timer.pass("blend");
+      if (at_family_ || ht_) {
+        auto t = timer.pass(ht_ ? "tail" : "blend");
         accum_.bind();
+        const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(accum_.framebuffer(), ht_ ? 2 : 1, bufs);
         const float zero[4] = {0, 0, 0, 0};
         glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 0, zero);
+        if (ht_) glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 1, zero);
         glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE);
         glUseProgram(blend_.get());
         passes_.begin_geometry();
@@ -257,6 +272,7 @@ class ApproxCase final : public OitCase {
       out_.bind();
       glBindTextureUnit(APPROX_ACCUM_UNIT, accum_.color_texture());
       passes_.bind_backdrop(resolve_.get());
+      if (ht_) glBindTextureUnit(APPROX_REVEAL_UNIT, reveal_.get());
       glUseProgram(resolve_.get());
       quad_.draw();
     } else if (settings_.technique == T::Wboit) {
@@ -320,6 +336,7 @@ class ApproxCase final : public OitCase {
     m["psnr"] = fmt(err.psnr);
     m["max_abs_error"] = fmt(err.max_abs_error);
     m["frac_pixels_off"] = fmt(err.frac_pixels_off);
+    m["bytes_per_pixel"] = fmt(bytes_per_pixel_);
     m["model_rmse"] = fmt(approx_error(model.rgb, std::vector<double>(ref.begin(), ref.end())).rmse);
 
     size_t nonfinite = 0, out_of_range = 0, model_off = 0;
@@ -401,6 +418,7 @@ class ApproxCase final : public OitCase {
   }
 
  private:
+  // The colour behind the transparent layers: one place, for the scene effects to replace.
   static std::string upper(std::string s) {
     for (auto& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
     return s;
@@ -426,7 +444,8 @@ class ApproxCase final : public OitCase {
   std::unique_ptr<FragmentStorage> lists_;
   HostLists host_;
   ApproxSettings settings_;
-  bool arrays_ = false, at_family_ = false;
+  bool arrays_ = false, at_family_ = false, ht_ = false;
+  double bytes_per_pixel_ = 0;
   StorageLayout layout_;
   std::unique_ptr<StorageResources> storage_;
   gl::Texture locks_, reveal_;

@@ -25,6 +25,7 @@
 #include "oit/image_io.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/packed_arrays.hpp"
+#include "oit/peel.hpp"
 #include "oit/reference.hpp"
 #include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
@@ -272,6 +273,7 @@ class ExactCase final : public OitCase {
     m["max_frags_used"] = std::to_string(max_frags_);
     m["node_pool"] = std::to_string(lists_->pool());
     m["node_pool_bytes"] = std::to_string(lists_->bytes());
+    m["bytes_per_pixel"] = fmt(static_cast<double>(lists_->bytes()) / (static_cast<double>(width_) * height_));
     if (!count_ms_.empty()) m["capture_count_ms"] = fmt(median_of(count_ms_));
     if (auto_) {
       m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
@@ -606,6 +608,7 @@ std::unique_ptr<OitCase> make_exact_case(const ParamSet& p, CaseContext& ctx) {
 std::unique_ptr<OitCase> make_oit_case(const ParamSet& p, CaseContext& ctx) {
   try {
     if (is_approx_technique(p.get("technique"))) return make_approx_case(p, ctx);
+    if (is_peel_technique(p.get("technique"))) return make_peel_case(p, ctx);
     return make_exact_case(p, ctx);
   } catch (const SceneError& e) {
     throw std::runtime_error(std::string("oit: ") + e.what());

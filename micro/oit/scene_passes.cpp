@@ -173,7 +173,7 @@ std::map<std::string, std::string> ScenePasses::resolved_params() const {
 
 Defines ScenePasses::depth_sampler_defines() const {
   Defines d = defines();
-  if (opaque_) d.push_back({"OPAQUE_DEPTH_SAMPLER", ""});
+  if (opaque_ && !skip_depth_test_) d.push_back({"OPAQUE_DEPTH_SAMPLER", ""});  // the fault skips the test
   return d;
 }
 

@@ -8,6 +8,9 @@
 //   TECH_UAT    section 6.1: unsorted relative transmittance, sorted in registers, rect metric
 //   TECH_UHAT   section 6.4, Listing 6.1: unsorted relative transmittance, height metric against an
 //               exponential fit of the visibility function
+//   TECH_HT     hybrid transparency's core (Maule et al. 2013): a k-buffer of the n nearest
+//               fragments whole (RGBA8 colour, depth), in (depth, colour) order; a fragment pushed
+//               out goes to the tail, which approx/ht_tail.frag accumulates in a second pass
 //   TECH_LAAT   section 6.2: UAT's relative nodes linked into a list (a link per node, a head
 //               slot), walked instead of sorted; only the changed nodes are written back
 // SYNC_INTERLOCK replaces the spinlock by ARB_fragment_shader_interlock (ordered: the insertion
@@ -286,8 +289,29 @@ void insert(ivec2 p, vec4 ct, float z) {
   uint first = uint((walk[0] == LAAT_N ? newSlot : walk[0]) + 1);
   if (first != head) STORAGE_STORE(p, LAAT_HEAD, uvec2(first, 0u));
 }
+#elif defined(TECH_HT)
+// Sorted insertion: the new fragment takes the first slot it precedes and pushes the rest back;
+// the last node falls out of the core (into the tail, which is found again in the tail pass).
+void insert(ivec2 p, uint key, float z) {
+  for (int i = 0; i < N; ++i) {
+    uvec2 node = STORAGE_LOAD(p, i);
+    float nz = node_depth(node);
+    if (z < nz || (z == nz && key < node.x)) {
+      STORAGE_STORE(p, i, uvec2(key, encode_depth(z)));
+      if (nz == DEPTH_EMPTY) break;
+      key = node.x;
+      z = nz;
+    }
+  }
+}
 #else
-#error "define TECH_MLAB, TECH_UMLAB, TECH_AT, TECH_HAT, TECH_UAT, TECH_UHAT or TECH_LAAT"
+#error "define TECH_MLAB, TECH_UMLAB, TECH_AT, TECH_HAT, TECH_UAT, TECH_UHAT, TECH_LAAT or TECH_HT"
+#endif
+
+#if defined(TECH_HT)
+#define INSERT_FRAGMENT insert(p, packUnorm4x8(c), z)
+#else
+#define INSERT_FRAGMENT insert(p, ct, z)
 #endif
 
 void main() {
@@ -297,14 +321,14 @@ void main() {
   vec4 ct = vec4(c.rgb * c.a, 1.0 - c.a);  // (premultiplied colour C, transmittance T)
 #if defined(SYNC_INTERLOCK)
   beginInvocationInterlockARB();
-  insert(p, ct, z);
+  INSERT_FRAGMENT;
   endInvocationInterlockARB();
 #else
   if (!gl_HelperInvocation) {
     bool waiting = true;
     for (uint spins = 0u; waiting && spins < uint(SPIN_CAP); ++spins) {
       if (imageAtomicCompSwap(locks, p, 0u, 1u) == 0u) {
-        insert(p, ct, z);
+        INSERT_FRAGMENT;
         memoryBarrier();
         imageAtomicExchange(locks, p, 0u);
         waiting = false;

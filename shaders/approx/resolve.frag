@@ -1,6 +1,9 @@
 // The full-screen resolve of the per-pixel array techniques, onto the opaque background:
 //   MLAB, UMLAB: C_final = C_opaque * prod T_i + sum C_i prod_{j<i} T_j over the nodes near to far
 //                (section 3.7; UMLAB's unsorted nodes are first sorted by a register insertion sort)
+//   HT:          the core's n nodes near to far, then the tail's weighted average (Bavoil & Myers
+//                2008, as Maule et al. 2013): colour sum C_i a_i / sum a_i covering 1 - (1 - a_avg)^n
+//                of what lies behind, a_avg = sum a_i / n, over the n tail fragments
 //   AT family:   C_final = accumulated sum (pass 2) + C_opaque * vis(infinity)
 // Fragments at exactly equal depth do not occlude each other in vis(z) (Eq. 2.3 counts only
 // nearer ones), so a stack of them adds up to more opacity than 1 - vis(infinity) and can leave
@@ -16,6 +19,9 @@
 #include "visibility.glsl"
 #if !defined(TECH_MLAB) && !defined(TECH_UMLAB)
 layout(binding = APPROX_ACCUM_UNIT) uniform sampler2D accumulation;
+#endif
+#if defined(TECH_HT)
+layout(binding = APPROX_REVEAL_UNIT) uniform sampler2D tailCount;
 #endif
 
 #include "../oit/backdrop.glsl"
@@ -50,6 +56,24 @@ void main() {
     t *= rC[i].a;
   }
   c += t * backdrop_colour(p);
+#elif defined(TECH_HT)
+  vec3 c = vec3(0.0);
+  float t = 1.0;
+  for (int i = 0; i < N; ++i) {  // empty nodes unpack to alpha 0: no effect
+    vec4 k = unpackUnorm4x8(STORAGE_LOAD(p, i).x);
+    c += t * k.a * k.rgb;
+    t *= 1.0 - k.a;
+  }
+  vec4 acc = texelFetch(accumulation, p, 0);
+  float n = texelFetch(tailCount, p, 0).r;
+  vec3 tail = vec3(0.0);
+  float tailT = 1.0;
+  if (n > 0.0) {
+    // Clamped: opaque tails sum their alphas to n, and a rounding above it gave pow() a negative base (NaN).
+    tailT = pow(clamp(1.0 - acc.a / n, 0.0, 1.0), n);
+    if (acc.a > 0.0) tail = acc.rgb / acc.a * (1.0 - tailT);
+  }
+  c += t * (tail + tailT * backdrop_colour(p));
 #else
   vec4 acc = texelFetch(accumulation, p, 0);
   float total = visibility(p, DEPTH_EMPTY);

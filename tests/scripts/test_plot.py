@@ -49,6 +49,26 @@ class PlotSynthetic(TempDirTest):
             svg = f.read()
         self.assertIn("not plotted", svg)
 
+    def test_oit_error_is_drawn_against_memory_where_rows_carry_bytes_per_pixel(self):
+        memory = {"base-is": 48, "weighted-blend": 20, "k-buffer": 100}
+        rows = [dict(r, bytes_per_pixel=str(memory.get(r["variant"], 64))) for r in syn.oit_rows()
+                if r.get("status") != "timeout"]
+        path = syn.write_summary(self.path("mem.csv"), rows, metrics=["rmse", "max_abs_error", "bytes_per_pixel"],
+                                 params=["scene", "max_frags"])
+        run_script("plot.py", path, "-o", self.path("memfig"))
+        with open(self.path("memfig/oit.svg"), encoding="utf-8") as f:
+            svg = f.read()
+        self.assertIn("rmse against memory", svg)
+        self.assertIn("bytes per pixel", svg)
+        self.assertIn("marker area: bytes/pixel, largest 100", svg)
+        # Without the column the figure keeps its two rows and says nothing about memory.
+        plain = syn.write_summary(self.path("plain.csv"), [{k: v for k, v in r.items() if k != "bytes_per_pixel"}
+                                                            for r in rows], metrics=["rmse", "max_abs_error"],
+                                  params=["scene", "max_frags"])
+        run_script("plot.py", plain, "-o", self.path("plainfig"))
+        with open(self.path("plainfig/oit.svg"), encoding="utf-8") as f:
+            self.assertNotIn("against memory", f.read())
+
     def test_an_experiment_in_two_files_gets_two_figures(self):
         a = syn.write_summary(self.path("a.csv"), syn.occupancy_rows(), syn.OCCUPANCY_METRICS, syn.OCCUPANCY_PARAMS)
         b = syn.write_summary(self.path("b.csv"), syn.occupancy_rows(draws=32), syn.OCCUPANCY_METRICS,
