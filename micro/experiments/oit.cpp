@@ -10,6 +10,7 @@
 #include "oit/approx.hpp"
 #include "oit/fragment_storage.hpp"
 #include "oit/metrics.hpp"
+#include "oit/moments.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/scene.hpp"
 
@@ -22,6 +23,7 @@ using namespace oit;
 std::vector<std::string> all_techniques() {  // exact, then approximate
   std::vector<std::string> t = exact_technique_names();
   for (const auto& a : approx_technique_names()) t.push_back(a);
+  for (const auto& a : moment_technique_names()) t.push_back(a);
   return t;
 }
 
@@ -33,7 +35,7 @@ class OitExperiment final : public Experiment {
            "(PPLL) or packed per-pixel arrays (PPPA), resolved by "
            "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
            "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, "
-           "micro/oit/approx.cpp) "
+           "micro/oit/approx.cpp; MBOIT, Muenstermann 2018; STOCHASTIC, Enderton 2010, micro/oit/moments.hpp) "
            "is validated against each technique's own CPU model, its error vs the exact image reported as data";
   }
   std::vector<ParamSpec> params() const override {
@@ -106,6 +108,7 @@ class OitExperiment final : public Experiment {
     auto_cache.only_when("technique", {"BMA-AUTO"});
     std::vector<ParamSpec> ps = {scene, view, technique, capture, detail, block, pool, max_frags, cs_group, auto_cache};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
+    for (auto& a : moment_params()) ps.push_back(std::move(a));
     return ps;
   }
   std::vector<MetricSpec> metric_specs() const override {
@@ -134,7 +137,11 @@ class OitExperiment final : public Experiment {
         {"capped_updates", T::Integer, "", "insertions that gave up on the spinlock after SPIN_CAP tries"},
         {"flicker", T::Number, "", "per-pixel variance across flicker_runs frames, mean over pixels"},
         {"flicker_max", T::Number, "", "its largest pixel"},
-        {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"}};
+        {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"},
+        // MBOIT and STOCHASTIC (micro/oit/moments.hpp)
+        {"bytes_per_pixel", T::Integer, "bytes", "the technique's per-pixel storage at this resolution"},
+        {"moment_bias", T::Number, "", "MBOIT: the moment bias used (the paper's value for the variant)"},
+        {"msaa_samples", T::Integer, "", "STOCHASTIC: MSAA samples per pass (samples_per_pixel / passes)"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());
     for (auto& x : image_error_metrics()) m.push_back(std::move(x));

@@ -1,0 +1,28 @@
+// MBOIT pass 1: every fragment adds its absorbance -ln(1 - alpha) and its moments (additive
+// blending into MOMENTS_B0 and one or two moment targets, 32- or 16-bit float).
+#include "../common/oitbench.glsl"
+#include "../approx/nodes.glsl"
+#include "moment_math.glsl"
+in vec4 vColour;
+in vec2 vUv;
+in float vSoft;
+uniform vec2 nearFar;
+uniform int zero;
+layout(location = 0) out float outB0;
+layout(location = 1) out vec4 outLow;
+#if MOMENT_COUNT > 4
+layout(location = 2) out vec4 outHigh;
+#endif
+void main() {
+  vec4 c = approx_fragment_colour(vColour, vUv, vSoft);
+  float a = c.a >= 1.0 ? ABSORBANCE_MAX : min(-log(1.0 - c.a), ABSORBANCE_MAX);
+  float b[MOMENT_COUNT];
+  moment_contribution(moment_warp(gl_FragCoord.z, nearFar), a, b);
+  outB0 = a + oitbench_fault_hang(zero);
+  outLow = vec4(b[0], b[1], b[2], b[3]);
+#if MOMENT_COUNT == 6
+  outHigh = vec4(b[4], b[5], 0.0, 0.0);
+#elif MOMENT_COUNT == 8
+  outHigh = vec4(b[4], b[5], b[6], b[7]);
+#endif
+}
