@@ -141,6 +141,9 @@ class OitExperiment final : public Experiment {
         // MBOIT and STOCHASTIC (micro/oit/moments.hpp)
         {"bytes_per_pixel", T::Integer, "bytes", "the technique's per-pixel storage at this resolution"},
         {"moment_bias", T::Number, "", "MBOIT: the moment bias used (the paper's value for the variant)"},
+        {"moment_rebiased", T::Number, "",
+         "MBOIT: fraction of fragments whose pixel's moments were inconsistent at that bias (rounded "
+         "storage), so the reconstruction raised it tenfold (up to 1000x; the CPU model's count)"},
         {"msaa_samples", T::Integer, "", "STOCHASTIC: MSAA samples per pass (samples_per_pixel / passes)"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());

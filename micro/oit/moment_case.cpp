@@ -116,7 +116,7 @@ class MboitCase final : public OitCase {
     s_.kind = p.get("moment_kind") == "trigonometric" ? MomentKind::Trigonometric : MomentKind::Power;
     s_.moments = static_cast<int>(p.get_int("moments"));
     s_.bits = static_cast<int>(p.get_int("moment_bits"));
-    s_.bias = mboit_bias(s_.kind, s_.moments, s_.bits);
+    s_.bias = mboit_paper_bias(s_.kind, s_.moments, s_.bits);
     s_.near_far = view_.near_far;
 
     // The moment targets: b0, b1..b4, and b5..b6 or b5..b8.
@@ -209,7 +209,8 @@ class MboitCase final : public OitCase {
     const HostLists& host = view_.fragments;
     ListStats stats = list_stats(host);
     auto ref = composite_reference(host, backdrop());
-    std::vector<double> model = mboit_model(host, backdrop(), s_);
+    size_t rebiased = 0;
+    std::vector<double> model = mboit_model(host, backdrop(), s_, &rebiased);
     ApproxError err = approx_error(rgb, ref);
     m["total_fragments"] = std::to_string(stats.total_fragments);
     m["peak_depth"] = std::to_string(stats.peak_depth);
@@ -221,6 +222,7 @@ class MboitCase final : public OitCase {
     m["frac_pixels_off"] = fmt(err.frac_pixels_off);
     m["model_rmse"] = fmt(approx_error(std::vector<float>(model.begin(), model.end()), ref).rmse);
     m["moment_bias"] = fmt(s_.bias);
+    m["moment_rebiased"] = fmt(stats.total_fragments ? static_cast<double>(rebiased) / stats.total_fragments : 0.0);
     m["bytes_per_pixel"] = std::to_string(bytes_);
     ModelCheck check = check_against_model(rgb, model, width_, kMomentTolerance);
     m["nonfinite"] = std::to_string(check.nonfinite);

@@ -15,6 +15,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kAbsorbanceMax = 10.0;
 constexpr double kWrappingZone = 0.1 * kPi;
 constexpr int kRootIterations = 200;
+constexpr int kRebiasSteps = 3;  // moment_math.glsl's REBIAS_STEPS
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -80,15 +81,6 @@ float mboit_paper_bias(MomentKind kind, int moments, int bits) {
   return half ? 8.5e-4f : 1.5e-6f;
 }
 
-float mboit_bias(MomentKind kind, int moments, int bits) {
-  // The paper's 16-bit values are for its quantised UNORM16 moments (written under rasterizer
-  // ordered views); half floats round b_k / b0 to about 5e-4, ten times coarser, which leaves the
-  // biased Hankel and Toeplitz matrices of single-fragment pixels indefinite. 40x the paper's
-  // 16-bit bias is the smallest of 1, 10, 40 that keeps every shipped scene valid at 128x128
-  // (docs/experiments/oit.md, "MBOIT").
-  return bits == 16 ? 40.0f * mboit_paper_bias(kind, moments, bits) : mboit_paper_bias(kind, moments, bits);
-}
-
 double moment_warp(float window_depth, glm::vec2 nf) {
   double n = nf.x, f = nf.y;
   double view = n * f / (f - window_depth * (f - n));
@@ -110,33 +102,40 @@ float round_to_half(float v) {
   return std::copysign(std::nearbyint(a / step) * step, v);
 }
 
-double moment_transmittance(double b0, const std::vector<double>& raw, double z, const MboitSettings& s) {
+double moment_transmittance(double b0, const std::vector<double>& raw, double z, const MboitSettings& s,
+                            bool* rebiased) {
   const int order = s.moments / 2;
   const bool trig = s.kind == MomentKind::Trigonometric;
   const double bias = s.bias;
   std::vector<Complex> m(2 * order + 1);
-  m[0] = 1.0;
-  Complex point;
-  if (trig) {
-    for (int k = 1; k <= order; ++k) m[k] = Complex(raw[2 * k - 2], raw[2 * k - 1]) / b0 * (1.0 - bias);
-    point = std::polar(1.0, moment_phase(z));
-  } else {
-    const auto& bv = power_bias_vector(s.moments);
-    for (int k = 1; k <= s.moments; ++k) m[k] = (1.0 - bias) * (raw[k - 1] / b0) + bias * bv[k - 1];
-    point = z;
-  }
+  Complex point = trig ? std::polar(1.0, moment_phase(z)) : Complex(z);
   std::vector<std::vector<Complex>> a(order + 1, std::vector<Complex>(order + 2));
-  Complex e = 1.0;
-  for (int i = 0; i <= order; ++i) {
-    for (int j = 0; j <= order; ++j) a[i][j] = trig ? (i >= j ? m[i - j] : std::conj(m[j - i])) : m[i + j];
-    a[i][order + 1] = e;
-    e *= point;
-  }
-  for (int k = 0; k <= order; ++k)
-    for (int i = k + 1; i <= order; ++i) {
-      Complex f = a[i][k] / a[k][k];
-      for (int j = k; j <= order + 1; ++j) a[i][j] -= f * a[k][j];
+  double b = bias;
+  for (int attempt = 0; attempt <= kRebiasSteps; ++attempt, b = std::min(b * 10.0, 1.0)) {
+    m[0] = 1.0;
+    if (trig) {
+      for (int k = 1; k <= order; ++k) m[k] = Complex(raw[2 * k - 2], raw[2 * k - 1]) / b0 * (1.0 - b);
+    } else {
+      const auto& bv = power_bias_vector(s.moments);
+      for (int k = 1; k <= s.moments; ++k) m[k] = (1.0 - b) * (raw[k - 1] / b0) + b * bv[k - 1];
     }
+    Complex e = 1.0;
+    for (int i = 0; i <= order; ++i) {
+      for (int j = 0; j <= order; ++j) a[i][j] = trig ? (i >= j ? m[i - j] : std::conj(m[j - i])) : m[i + j];
+      a[i][order + 1] = e;
+      e *= point;
+    }
+    bool definite = true;
+    for (int k = 0; k <= order; ++k) {
+      definite = definite && a[k][k].real() > 0.0;
+      for (int i = k + 1; i <= order; ++i) {
+        Complex f = a[i][k] / a[k][k];
+        for (int j = k; j <= order + 1; ++j) a[i][j] -= f * a[k][j];
+      }
+    }
+    if (rebiased) *rebiased = attempt > 0;
+    if (definite) break;
+  }
   std::vector<Complex> c(order + 1);
   for (int i = order; i >= 0; --i) {
     Complex sum = a[i][order + 1];
@@ -149,14 +148,21 @@ double moment_transmittance(double b0, const std::vector<double>& raw, double z,
   x[0] = point;
   Complex seed(0.4, 0.9);
   for (int k = 1; k <= order; ++k, seed *= Complex(0.4, 0.9)) x[k] = seed;
-  for (int it = 0; it < kRootIterations; ++it)
+  for (int it = 0; it < kRootIterations; ++it) {
+    double moved = 0;
     for (int k = 1; k <= order; ++k) {
       Complex value = q[order], denominator = 1.0;
       for (int j = order - 1; j >= 0; --j) value = value * x[k] + q[j];
       for (int j = 1; j <= order; ++j)
         if (j != k) denominator *= x[k] - x[j];
-      if (std::norm(denominator) > 0.0) x[k] -= value / denominator;
+      if (std::norm(denominator) > 0.0) {
+        Complex step = value / denominator;
+        x[k] -= step;
+        moved = std::max(moved, std::norm(step));
+      }
     }
+    if (moved < 1e-30) break;  // converged to double precision
+  }
   std::vector<Complex> f(order + 1);
   f[0] = s.overestimation;
   if (trig) {
@@ -184,7 +190,7 @@ double moment_transmittance(double b0, const std::vector<double>& raw, double z,
   return std::clamp(std::exp(-b0 * absorbance), 0.0, 1.0);
 }
 
-std::vector<double> mboit_model(const HostLists& l, glm::vec3 bg, const MboitSettings& s) {
+std::vector<double> mboit_model(const HostLists& l, glm::vec3 bg, const MboitSettings& s, size_t* rebiased) {
   const size_t pixels = l.heads.size();
   const int n = s.moments;
   const bool trig = s.kind == MomentKind::Trigonometric;
@@ -215,7 +221,9 @@ std::vector<double> mboit_model(const HostLists& l, glm::vec3 bg, const MboitSet
     // Pass 2: each fragment weighted by the reconstructed transmittance at its depth.
     glm::dvec4 acc(0.0);
     for (const auto& fr : frags) {
-      double t = b0 > 0 ? moment_transmittance(b0, raw, moment_warp(fr.depth, s.near_far), s) : 1.0;
+      bool raised = false;
+      double t = b0 > 0 ? moment_transmittance(b0, raw, moment_warp(fr.depth, s.near_far), s, &raised) : 1.0;
+      if (rebiased && raised) ++*rebiased;
       acc += glm::dvec4(glm::dvec3(fr.colour) * static_cast<double>(fr.colour.a) * t, fr.colour.a * t);
     }
     // Resolve.

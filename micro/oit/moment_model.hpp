@@ -21,9 +21,13 @@ namespace oitbench::oit {
 // --- MBOIT ----------------------------------------------------------------------------------------
 double moment_warp(float window_depth, glm::vec2 near_far);
 // The transmittance the moments reconstruct at warped depth z (b0 and the raw sums as stored).
-double moment_transmittance(double b0, const std::vector<double>& raw, double z, const MboitSettings& s);
-// RGB per pixel (3 doubles), background where no fragment landed.
-std::vector<double> mboit_model(const HostLists& lists, glm::vec3 background, const MboitSettings& s);
+// `rebiased`: set where the moments needed a raised bias (moment_math.glsl, REBIAS_STEPS).
+double moment_transmittance(double b0, const std::vector<double>& raw, double z, const MboitSettings& s,
+                            bool* rebiased = nullptr);
+// RGB per pixel (3 doubles), background where no fragment landed; `rebiased` counts the fragments
+// whose transmittance needed a raised bias.
+std::vector<double> mboit_model(const HostLists& lists, glm::vec3 background, const MboitSettings& s,
+                                size_t* rebiased = nullptr);
 // IEEE half precision, round to nearest even (the 16-bit targets' storage).
 float round_to_half(float v);
 

@@ -36,15 +36,12 @@ struct MboitSettings {
   MomentKind kind = MomentKind::Power;
   int moments = 4;                 // 4, 6, 8
   int bits = 32;                   // storage of the moments: 32 (R/RG/RGBA32F) or 16 (.. 16F)
-  float bias = 5e-7f;              // mboit_bias(kind, moments, bits)
+  float bias = 5e-7f;              // mboit_paper_bias(kind, moments, bits)
   float overestimation = 0.25f;    // beta: the weight of a fragment's own depth
   glm::vec2 near_far{0.1f, 10.f};  // the projection's planes (the depth warp works on view depth)
 };
 // The moment bias the MBOIT paper gives for a variant (docs/experiments/oit.md cites the table).
 float mboit_paper_bias(MomentKind kind, int moments, int bits);
-// The bias MBOIT runs with: the paper's for 32-bit storage; for 16-bit float targets (not the
-// paper's quantised 16-bit storage) 40 times the paper's 16-bit value (see moment_model.cpp).
-float mboit_bias(MomentKind kind, int moments, int bits);
 
 // The parameters MBOIT and STOCHASTIC add to the oit experiment, each scoped to its technique.
 std::vector<ParamSpec> moment_params();

@@ -19,6 +19,7 @@
 #endif
 #define ORDER (MOMENT_COUNT / 2)
 #define ROOT_ITERATIONS 32
+#define REBIAS_STEPS 3
 const float ABSORBANCE_MAX = 10.0;  // the paper's clamp for opaque fragments: exp(-10) behind them
 const float PI = 3.14159265358979;
 
@@ -72,9 +73,8 @@ void moment_contribution(float z, float a, out float b[MOMENT_COUNT]) {
 float moment_transmittance(float b0, float raw[MOMENT_COUNT], float z, float bias, float beta) {
   // m[k]: the normalised, biased moments (complex; power moments are real).
   vec2 m[2 * ORDER + 1];
-  m[0] = vec2(1.0, 0.0);
+  vec2 a[ORDER + 1][ORDER + 2];
 #if defined(MOMENT_TRIGONOMETRIC)
-  for (int k = 1; k <= ORDER; ++k) m[k] = vec2(raw[2 * k - 2], raw[2 * k - 1]) / b0 * (1.0 - bias);
   float phase = moment_phase(z);
   vec2 point = vec2(cos(phase), sin(phase));
 #else
@@ -85,29 +85,43 @@ float moment_transmittance(float b0, float raw[MOMENT_COUNT], float z, float bia
 #else
   const float bias_vector[8] = float[](0.0, 0.75, 0.0, 0.67666666666666664, 0.0, 0.63, 0.0, 0.60030303030303034);
 #endif
-  for (int k = 1; k <= MOMENT_COUNT; ++k) m[k] = vec2(mix(raw[k - 1] / b0, bias_vector[k - 1], bias), 0.0);
   vec2 point = vec2(z, 0.0);
 #endif
-  // The system B c = e(point): B[i][j] = m[i + j] (Hankel) or m[i - j] (Toeplitz, Hermitian).
-  vec2 a[ORDER + 1][ORDER + 2];
-  vec2 e = vec2(1.0, 0.0);
-  for (int i = 0; i <= ORDER; ++i) {
-    for (int j = 0; j <= ORDER; ++j) {
+  // Rounded storage can make the moments inconsistent (a pivot <= 0: the matrix is not positive
+  // definite even after biasing, e.g. half-float sums over 128 layers); then the bias grows tenfold,
+  // at most REBIAS_STEPS times. The paper has one fixed bias.
+  float b = bias;
+  for (int attempt = 0; attempt <= REBIAS_STEPS; ++attempt, b = min(b * 10.0, 1.0)) {
+    m[0] = vec2(1.0, 0.0);
 #if defined(MOMENT_TRIGONOMETRIC)
-      a[i][j] = i >= j ? m[i - j] : cconj(m[j - i]);
+    for (int k = 1; k <= ORDER; ++k) m[k] = vec2(raw[2 * k - 2], raw[2 * k - 1]) / b0 * (1.0 - b);
 #else
-      a[i][j] = m[i + j];
+    for (int k = 1; k <= MOMENT_COUNT; ++k) m[k] = vec2(mix(raw[k - 1] / b0, bias_vector[k - 1], b), 0.0);
 #endif
+    // The system B c = e(point): B[i][j] = m[i + j] (Hankel) or m[i - j] (Toeplitz, Hermitian).
+    vec2 e = vec2(1.0, 0.0);
+    for (int i = 0; i <= ORDER; ++i) {
+      for (int j = 0; j <= ORDER; ++j) {
+#if defined(MOMENT_TRIGONOMETRIC)
+        a[i][j] = i >= j ? m[i - j] : cconj(m[j - i]);
+#else
+        a[i][j] = m[i + j];
+#endif
+      }
+      a[i][ORDER + 1] = e;
+      e = cmul(e, point);
     }
-    a[i][ORDER + 1] = e;
-    e = cmul(e, point);
+    // Gaussian elimination without pivoting: the pivots of a positive definite matrix are > 0.
+    bool definite = true;
+    for (int k = 0; k <= ORDER; ++k) {
+      definite = definite && a[k][k].x > 0.0;
+      for (int i = k + 1; i <= ORDER; ++i) {
+        vec2 f = cdiv(a[i][k], a[k][k]);
+        for (int j = k; j <= ORDER + 1; ++j) a[i][j] -= cmul(f, a[k][j]);
+      }
+    }
+    if (definite) break;
   }
-  // Gaussian elimination without pivoting: the biased matrix is positive definite.
-  for (int k = 0; k <= ORDER; ++k)
-    for (int i = k + 1; i <= ORDER; ++i) {
-      vec2 f = cdiv(a[i][k], a[k][k]);
-      for (int j = k; j <= ORDER + 1; ++j) a[i][j] -= cmul(f, a[k][j]);
-    }
   vec2 c[ORDER + 1];
   for (int i = ORDER; i >= 0; --i) {
     vec2 s = a[i][ORDER + 1];
