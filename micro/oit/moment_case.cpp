@@ -227,6 +227,7 @@ class MboitCase final : public OitCase {
     ModelCheck check = check_against_model(rgb, model, width_, kMomentTolerance);
     m["nonfinite"] = std::to_string(check.nonfinite);
     m["model_max_diff"] = fmt(check.max_diff);
+    m["model_off_channels"] = std::to_string(check.off);
     if (frames_.size() >= 2) {
       Flicker f = flicker_of(frames_);
       m["flicker"] = fmt(f.mean);
@@ -240,10 +241,15 @@ class MboitCase final : public OitCase {
     if (check.nonfinite)
       problems.push_back(std::to_string(check.nonfinite) + " non-finite channel value(s) (NaN or Inf)");
     if (check.out_of_range) problems.push_back(std::to_string(check.out_of_range) + " channel value(s) outside [0, 1]");
-    if (check.off)
-      problems.push_back(
-          std::to_string(check.off) +
-          " channel value(s) differ from MBOIT's CPU model by more than 4/255; first: " + check.first_off);
+    // 16-bit float sums can leave a pixel's moments at the edge of consistency, where the GPU's
+    // float elimination and the model's double one disagree on raising the bias: up to 1% of the
+    // channels may differ there (the wrong-result fault changes 12.5% of the pixels).
+    const size_t allowed = s_.bits == 16 ? rgb.size() / 100 : 0;
+    if (check.off > allowed)
+      problems.push_back(std::to_string(check.off) +
+                         " channel value(s) differ from MBOIT's CPU model by more than 4/255" +
+                         (allowed ? " (" + std::to_string(allowed) + " allowed with 16-bit storage)" : std::string()) +
+                         "; first: " + check.first_off);
     v.valid = problems.empty();
     for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
     return v;
