@@ -1,10 +1,12 @@
 #include "oit/moment_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <complex>
 #include <sstream>
+#include <thread>
 
 namespace oitbench::oit {
 
@@ -107,9 +109,9 @@ double moment_transmittance(double b0, const std::vector<double>& raw, double z,
   const int order = s.moments / 2;
   const bool trig = s.kind == MomentKind::Trigonometric;
   const double bias = s.bias;
-  std::vector<Complex> m(2 * order + 1);
+  std::array<Complex, 9> m{};  // fixed sizes: this runs once per fragment
   Complex point = trig ? std::polar(1.0, moment_phase(z)) : Complex(z);
-  std::vector<std::vector<Complex>> a(order + 1, std::vector<Complex>(order + 2));
+  std::array<std::array<Complex, 6>, 5> a{};
   double b = bias;
   for (int attempt = 0; attempt <= kRebiasSteps; ++attempt, b = std::min(b * 10.0, 1.0)) {
     m[0] = 1.0;
@@ -136,15 +138,15 @@ double moment_transmittance(double b0, const std::vector<double>& raw, double z,
     if (rebiased) *rebiased = attempt > 0;
     if (definite) break;
   }
-  std::vector<Complex> c(order + 1);
+  std::array<Complex, 5> c{};
   for (int i = order; i >= 0; --i) {
     Complex sum = a[i][order + 1];
     for (int j = i + 1; j <= order; ++j) sum -= a[i][j] * c[j];
     c[i] = sum / a[i][i];
   }
-  std::vector<Complex> q(order + 1);
+  std::array<Complex, 5> q{};
   for (int k = 0; k <= order; ++k) q[k] = trig ? std::conj(c[k]) / std::conj(c[order]) : c[k] / c[order];
-  std::vector<Complex> x(order + 1);
+  std::array<Complex, 5> x{};
   x[0] = point;
   Complex seed(0.4, 0.9);
   for (int k = 1; k <= order; ++k, seed *= Complex(0.4, 0.9)) x[k] = seed;
@@ -163,7 +165,7 @@ double moment_transmittance(double b0, const std::vector<double>& raw, double z,
     }
     if (moved < 1e-30) break;  // converged to double precision
   }
-  std::vector<Complex> f(order + 1);
+  std::array<Complex, 5> f{};
   f[0] = s.overestimation;
   if (trig) {
     double reference = circle_parameter(point);
@@ -179,7 +181,7 @@ double moment_transmittance(double b0, const std::vector<double>& raw, double z,
   }
   for (int j = 1; j <= order; ++j)
     for (int i = order; i >= j; --i) f[i] = (f[i] - f[i - 1]) / (x[i] - x[i - j]);
-  std::vector<Complex> p(order + 1, 0.0);
+  std::array<Complex, 5> p{};
   p[0] = f[order];
   for (int k = order - 1; k >= 0; --k) {
     for (int j = order; j >= 1; --j) p[j] = p[j - 1] - p[j] * x[k];
@@ -196,41 +198,51 @@ std::vector<double> mboit_model(const HostLists& l, glm::vec3 bg, const MboitSet
   const bool trig = s.kind == MomentKind::Trigonometric;
   auto store = [&](float v) { return s.bits == 16 ? round_to_half(v) : v; };
   std::vector<double> out(pixels * 3);
-  std::vector<Frag> frags;
-  std::vector<double> contribution(n), raw(n);
-  std::vector<float> sums(n);
-  for (size_t px = 0; px < pixels; ++px) {
-    arrival_order(l, px, frags);
-    // Pass 1: the moments as the blender sums them into the targets.
-    float b0 = 0;
-    std::fill(sums.begin(), sums.end(), 0.0f);
-    for (const auto& fr : frags) {
-      double a = absorbance_of(fr.colour.a), z = moment_warp(fr.depth, s.near_far);
-      if (trig) {
-        Complex pk = std::polar(1.0, moment_phase(z)), p = pk;
-        for (int k = 0; k < n / 2; ++k, pk *= p)
-          contribution[2 * k] = pk.real() * a, contribution[2 * k + 1] = pk.imag() * a;
-      } else {
-        double zk = z;
-        for (int k = 0; k < n; ++k, zk *= z) contribution[k] = zk * a;
+  // Rows of pixels on every core: each pixel is independent.
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<size_t> raised_count(threads, 0);
+  auto rows = [&](unsigned part) {
+    std::vector<Frag> frags;
+    std::vector<double> contribution(n), raw(n);
+    std::vector<float> sums(n);
+    for (size_t px = part; px < pixels; px += threads) {
+      arrival_order(l, px, frags);
+      // Pass 1: the moments as the blender sums them into the targets.
+      float b0 = 0;
+      std::fill(sums.begin(), sums.end(), 0.0f);
+      for (const auto& fr : frags) {
+        double a = absorbance_of(fr.colour.a), z = moment_warp(fr.depth, s.near_far);
+        if (trig) {
+          Complex pk = std::polar(1.0, moment_phase(z)), p = pk;
+          for (int k = 0; k < n / 2; ++k, pk *= p)
+            contribution[2 * k] = pk.real() * a, contribution[2 * k + 1] = pk.imag() * a;
+        } else {
+          double zk = z;
+          for (int k = 0; k < n; ++k, zk *= z) contribution[k] = zk * a;
+        }
+        b0 = store(b0 + static_cast<float>(a));
+        for (int k = 0; k < n; ++k) sums[k] = store(sums[k] + static_cast<float>(contribution[k]));
       }
-      b0 = store(b0 + static_cast<float>(a));
-      for (int k = 0; k < n; ++k) sums[k] = store(sums[k] + static_cast<float>(contribution[k]));
+      for (int k = 0; k < n; ++k) raw[k] = sums[k];
+      // Pass 2: each fragment weighted by the reconstructed transmittance at its depth.
+      glm::dvec4 acc(0.0);
+      for (const auto& fr : frags) {
+        bool raised = false;
+        double t = b0 > 0 ? moment_transmittance(b0, raw, moment_warp(fr.depth, s.near_far), s, &raised) : 1.0;
+        raised_count[part] += raised;
+        acc += glm::dvec4(glm::dvec3(fr.colour) * static_cast<double>(fr.colour.a) * t, fr.colour.a * t);
+      }
+      // Resolve.
+      double total = std::exp(-static_cast<double>(b0));
+      glm::dvec3 behind(bg), c = acc.a > 0 ? glm::dvec3(acc) / acc.a * (1.0 - total) + behind * total : behind;
+      for (int k = 0; k < 3; ++k) out[px * 3 + k] = c[k];
     }
-    for (int k = 0; k < n; ++k) raw[k] = sums[k];
-    // Pass 2: each fragment weighted by the reconstructed transmittance at its depth.
-    glm::dvec4 acc(0.0);
-    for (const auto& fr : frags) {
-      bool raised = false;
-      double t = b0 > 0 ? moment_transmittance(b0, raw, moment_warp(fr.depth, s.near_far), s, &raised) : 1.0;
-      if (rebiased && raised) ++*rebiased;
-      acc += glm::dvec4(glm::dvec3(fr.colour) * static_cast<double>(fr.colour.a) * t, fr.colour.a * t);
-    }
-    // Resolve.
-    double total = std::exp(-static_cast<double>(b0));
-    glm::dvec3 behind(bg), c = acc.a > 0 ? glm::dvec3(acc) / acc.a * (1.0 - total) + behind * total : behind;
-    for (int k = 0; k < 3; ++k) out[px * 3 + k] = c[k];
-  }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(rows, t);
+  for (auto& t : pool) t.join();
+  if (rebiased)
+    for (size_t r : raised_count) *rebiased += r;
   return out;
 }
 
