@@ -244,7 +244,9 @@ class StochasticCase final : public OitCase {
       coverage_fragments_.resize(count);
       for (size_t i = 0; i < count; ++i) {
         const GLuint* w = &data[i * words];
-        coverage_fragments_[i] = {w[0], w[1], w[2], w[3], std::bit_cast<float>(w[4])};
+        // gl_FragDepth is clamped to the depth range: the centre depth of a fragment whose centre lies
+        // outside its primitive is extrapolated and can leave [0, 1].
+        coverage_fragments_[i] = {w[0], w[1], w[2], w[3], std::clamp(std::bit_cast<float>(w[4]), 0.0f, 1.0f)};
       }
       return;
     }
