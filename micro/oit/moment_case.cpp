@@ -1,5 +1,6 @@
 // The oit experiment's MBOIT case (moments.hpp): a moment pass, a weighted colour pass and a
 // resolve (shaders/moments/), validated against mboit_model (moment_model.hpp).
+#include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 #include <sstream>
 
@@ -84,6 +85,18 @@ CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
   // The planes back out of the perspective matrix (glm::perspective's layout), as approx_case.cpp.
   glm::mat4 pm = v.view_proj * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
   v.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
+  // The paper warps the view depth between bounds of the scene, not the projection's planes (whose
+  // near plane can be far in front of the geometry): the vertices' own extent, slightly widened.
+  glm::vec3 forward = glm::normalize(view.target - view.eye);
+  float lo = 1e30f, hi = -1e30f;
+  for (const auto& vertex : mesh.vertices) {
+    float d = glm::dot(vertex.position - view.eye, forward);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  lo = std::clamp(lo * 0.999f, v.near_far.x, v.near_far.y);
+  hi = std::clamp(hi * 1.001f, lo * 1.001f, v.near_far.y);
+  v.depth_range = {lo, hi};
   size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
   auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
   auto capture = build_capture_programs(
@@ -118,6 +131,7 @@ class MboitCase final : public OitCase {
     s_.bits = static_cast<int>(p.get_int("moment_bits"));
     s_.bias = mboit_paper_bias(s_.kind, s_.moments, s_.bits);
     s_.near_far = view_.near_far;
+    s_.depth_range = view_.depth_range;
 
     // The moment targets: b0, b1..b4, and b5..b6 or b5..b8.
     const bool half = s_.bits == 16;
@@ -150,6 +164,8 @@ class MboitCase final : public OitCase {
     for (const gl::Program* prog : {&moment_pass_, &blend_pass_}) {
       set_view_proj(*prog, view_.view_proj);
       glProgramUniform2f(prog->get(), glGetUniformLocation(prog->get(), "nearFar"), s_.near_far.x, s_.near_far.y);
+      glProgramUniform2f(prog->get(), glGetUniformLocation(prog->get(), "depthRange"), s_.depth_range.x,
+                         s_.depth_range.y);
     }
     glProgramUniform1f(blend_pass_.get(), glGetUniformLocation(blend_pass_.get(), "momentBias"), s_.bias);
     glProgramUniform1f(blend_pass_.get(), glGetUniformLocation(blend_pass_.get(), "overestimation"), s_.overestimation);

@@ -83,10 +83,10 @@ float mboit_paper_bias(MomentKind kind, int moments, int bits) {
   return half ? 8.5e-4f : 1.5e-6f;
 }
 
-double moment_warp(float window_depth, glm::vec2 nf) {
+double moment_warp(float window_depth, glm::vec2 nf, glm::vec2 range) {
   double n = nf.x, f = nf.y;
   double view = n * f / (f - window_depth * (f - n));
-  return (std::log(view) - std::log(n)) / (std::log(f) - std::log(n)) * 2.0 - 1.0;
+  return (std::log(view) - std::log(range.x)) / (std::log(range.y) - std::log(range.x)) * 2.0 - 1.0;
 }
 
 float round_to_half(float v) {
@@ -211,7 +211,7 @@ std::vector<double> mboit_model(const HostLists& l, glm::vec3 bg, const MboitSet
       float b0 = 0;
       std::fill(sums.begin(), sums.end(), 0.0f);
       for (const auto& fr : frags) {
-        double a = absorbance_of(fr.colour.a), z = moment_warp(fr.depth, s.near_far);
+        double a = absorbance_of(fr.colour.a), z = moment_warp(fr.depth, s.near_far, s.depth_range);
         if (trig) {
           Complex pk = std::polar(1.0, moment_phase(z)), p = pk;
           for (int k = 0; k < n / 2; ++k, pk *= p)
@@ -228,7 +228,8 @@ std::vector<double> mboit_model(const HostLists& l, glm::vec3 bg, const MboitSet
       glm::dvec4 acc(0.0);
       for (const auto& fr : frags) {
         bool raised = false;
-        double t = b0 > 0 ? moment_transmittance(b0, raw, moment_warp(fr.depth, s.near_far), s, &raised) : 1.0;
+        double t =
+            b0 > 0 ? moment_transmittance(b0, raw, moment_warp(fr.depth, s.near_far, s.depth_range), s, &raised) : 1.0;
         raised_count[part] += raised;
         acc += glm::dvec4(glm::dvec3(fr.colour) * static_cast<double>(fr.colour.a) * t, fr.colour.a * t);
       }

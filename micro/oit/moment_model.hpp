@@ -19,7 +19,8 @@
 namespace oitbench::oit {
 
 // --- MBOIT ----------------------------------------------------------------------------------------
-double moment_warp(float window_depth, glm::vec2 near_far);
+// Window depth -> view depth (near_far: the projection) -> log, scaled from depth_range to [-1, 1].
+double moment_warp(float window_depth, glm::vec2 near_far, glm::vec2 depth_range);
 // The transmittance the moments reconstruct at warped depth z (b0 and the raw sums as stored).
 // `rebiased`: set where the moments needed a raised bias (moment_math.glsl, REBIAS_STEPS).
 double moment_transmittance(double b0, const std::vector<double>& raw, double z, const MboitSettings& s,

@@ -34,11 +34,12 @@ enum class MomentKind { Power, Trigonometric };
 // NUM_MOMENTS): power moments b1..b_n, or n/2 complex trigonometric moments.
 struct MboitSettings {
   MomentKind kind = MomentKind::Power;
-  int moments = 4;                 // 4, 6, 8
-  int bits = 32;                   // storage of the moments: 32 (R/RG/RGBA32F) or 16 (.. 16F)
-  float bias = 5e-7f;              // mboit_paper_bias(kind, moments, bits)
-  float overestimation = 0.25f;    // beta: the weight of a fragment's own depth
-  glm::vec2 near_far{0.1f, 10.f};  // the projection's planes (the depth warp works on view depth)
+  int moments = 4;                    // 4, 6, 8
+  int bits = 32;                      // storage of the moments: 32 (R/RG/RGBA32F) or 16 (.. 16F)
+  float bias = 5e-7f;                 // mboit_paper_bias(kind, moments, bits)
+  float overestimation = 0.25f;       // beta: the weight of a fragment's own depth
+  glm::vec2 near_far{0.1f, 10.f};     // the projection's planes (window depth back to view depth)
+  glm::vec2 depth_range{0.1f, 10.f};  // the view depths the log warp maps to [-1, 1]: the geometry's
 };
 // The moment bias the MBOIT paper gives for a variant (docs/experiments/oit.md cites the table).
 float mboit_paper_bias(MomentKind kind, int moments, int bits);
@@ -53,6 +54,7 @@ struct CapturedView {
   std::unique_ptr<GpuMesh> mesh;
   glm::mat4 view_proj{1.0f};
   glm::vec2 near_far{0.1f, 10.f};
+  glm::vec2 depth_range{0.1f, 10.f};  // nearest and farthest vertex along the view direction
   HostLists fragments;
 };
 CapturedView capture_view(const ParamSet& p, CaseContext& ctx);

@@ -8,6 +8,7 @@ in vec4 vColour;
 in vec2 vUv;
 in float vSoft;
 uniform vec2 nearFar;
+uniform vec2 depthRange;  // the view depths the warp maps to [-1, 1]
 uniform float momentBias;
 uniform float overestimation;
 layout(binding = MOMENTS_B0_UNIT) uniform sampler2D b0Moment;
@@ -35,7 +36,7 @@ void main() {
   raw[6] = high.z;
   raw[7] = high.w;
 #endif
-  float t = b0 > 0.0 ? moment_transmittance(b0, raw, moment_warp(gl_FragCoord.z, nearFar), momentBias, overestimation)
+  float t = b0 > 0.0 ? moment_transmittance(b0, raw, moment_warp(gl_FragCoord.z, nearFar, depthRange), momentBias, overestimation)
                      : 1.0;
   weighted = vec4(c.rgb * c.a * t, c.a * t);
 }

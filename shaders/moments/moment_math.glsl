@@ -23,11 +23,12 @@
 const float ABSORBANCE_MAX = 10.0;  // the paper's clamp for opaque fragments: exp(-10) behind them
 const float PI = 3.14159265358979;
 
-// Window depth in [0, 1] -> view depth -> its logarithm scaled to [-1, 1] between the planes.
-float moment_warp(float window_depth, vec2 near_far) {
+// Window depth in [0, 1] -> view depth (near_far: the projection's planes) -> its logarithm scaled to
+// [-1, 1] between the geometry's nearest and farthest view depth (range).
+float moment_warp(float window_depth, vec2 near_far, vec2 range) {
   float n = near_far.x, f = near_far.y;
   float view = n * f / (f - window_depth * (f - n));
-  return (log(view) - log(n)) / (log(f) - log(n)) * 2.0 - 1.0;
+  return (log(view) - log(range.x)) / (log(range.y) - log(range.x)) * 2.0 - 1.0;
 }
 
 vec2 cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }

@@ -7,6 +7,7 @@ in vec4 vColour;
 in vec2 vUv;
 in float vSoft;
 uniform vec2 nearFar;
+uniform vec2 depthRange;  // the view depths the warp maps to [-1, 1]
 uniform int zero;
 layout(location = 0) out float outB0;
 layout(location = 1) out vec4 outLow;
@@ -17,7 +18,7 @@ void main() {
   vec4 c = approx_fragment_colour(vColour, vUv, vSoft);
   float a = c.a >= 1.0 ? ABSORBANCE_MAX : min(-log(1.0 - c.a), ABSORBANCE_MAX);
   float b[MOMENT_COUNT];
-  moment_contribution(moment_warp(gl_FragCoord.z, nearFar), a, b);
+  moment_contribution(moment_warp(gl_FragCoord.z, nearFar, depthRange), a, b);
   outB0 = a + oitbench_fault_hang(zero);
   outLow = vec4(b[0], b[1], b[2], b[3]);
 #if MOMENT_COUNT == 6
