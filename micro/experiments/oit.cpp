@@ -2,6 +2,7 @@
 // micro/oit/exact_case.cpp) and approximate OIT (Brüll 2018; micro/oit/approx.cpp) on scenes kept
 // as data (scenes/*.json). This file declares the parameter grid; the cases live in micro/oit/
 // so that `oitbench view` renders with the same code.
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,7 +24,8 @@ using namespace oit;
 std::vector<std::string> all_techniques() {  // exact, then approximate
   std::vector<std::string> t = exact_technique_names();
   for (const auto& a : approx_technique_names()) t.push_back(a);
-  for (const auto& a : moment_technique_names()) t.push_back(a);
+  // MBOIT and STOCHASTIC before unsorted, which stays last: the no-OIT baseline.
+  t.insert(std::find(t.begin(), t.end(), "unsorted"), moment_technique_names().begin(), moment_technique_names().end());
   return t;
 }
 
