@@ -75,6 +75,23 @@ TEST_F(Moments, StochasticIsExactWhereAlphaIsZeroOrOne) {
   EXPECT_EQ(v.metrics.at("flicker_pixels"), "0");
 }
 
+TEST_F(Moments, FiniteAndValidOnTheNumericallyHardScenes) {
+  for (const char* scene : {"hard_opaque_front", "hard_opaque_middle", "hard_alpha_zero", "hard_equal_depth",
+                            "hard_near_far", "hard_sparse"}) {
+    std::string path = std::string(OITBENCH_TEST_DATA) + "/" + scene + ".json";
+    auto m = mboit(path, "6");
+    auto t = mboit(path, "8", "trigonometric", "16");
+    auto st = stochastic(path, "8");
+    for (auto* p : {&m, &t, &st}) {
+      (*p)["view"] = "fwd";
+      p->erase("detail");
+      auto v = run_case("oit", *p, {32, 32});
+      EXPECT_TRUE(v.valid) << scene << " " << p->at("technique") << ": " << v.reason;
+      EXPECT_EQ(v.metrics.at("nonfinite"), "0") << scene << " " << p->at("technique");
+    }
+  }
+}
+
 TEST_F(Moments, EachValidatorFailsOnAWrongResult) {
   auto m = mboit("hairball", "6");
   m["fault"] = "wrong-result";
