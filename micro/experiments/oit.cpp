@@ -147,7 +147,7 @@ class OitExperiment final : public Experiment {
          "MBOIT: fraction of fragments whose pixel's moments were inconsistent at that bias (rounded "
          "storage), so the reconstruction raised it tenfold (up to 1000x; the CPU model's count)"},
         {"model_off_channels", T::Integer, "",
-         "MBOIT: channel values more than the tolerance from the CPU model (16-bit storage allows 1%)"},
+         "MBOIT: channel values more than the tolerance from the CPU model (up to 1% allowed)"},
         {"msaa_samples", T::Integer, "", "STOCHASTIC: MSAA samples per pass (samples_per_pixel / passes)"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());
