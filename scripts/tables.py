@@ -136,6 +136,11 @@ TECHNIQUES = {
     "LAAT": T("oit", "laat", size="nodes"),
     "HAT": T("oit", "hat", size="nodes"),
     "UHAT": T("oit", "uhat", size="nodes"),
+    # Münstermann 2018 figure 1: MBOIT variants (size = moments, the reals beside b0), MLAB (above) and
+    # depth peeling, DP, the peel technique (rows without it print "—").
+    "MBOIT power 16-bit": T("oit", "mboit momentkind=power momentbits=16", size="moments"),
+    "MBOIT trigonometric 32-bit": T("oit", "mboit momentkind=trigonometric momentbits=32", size="moments"),
+    "DP": T("oit", "dp"),
 }
 
 # Which of our passes a paper metric is.
@@ -155,9 +160,13 @@ STAND_INS = {"powerplant": "enginegrid", "atrium": "house"}
 
 
 class PaperTable:
-    def __init__(self, name, source, table, title, baseline, kind="times", any_scene=False, presets=()):
+    def __init__(self, name, source, table, title, baseline, kind="times", any_scene=False, presets=(),
+                 baseline_own_size=False):
         self.name, self.source, self.table, self.title, self.baseline, self.kind = \
             name, source, table, title, baseline, kind
+        # The baseline row has a size of its own (MLAB's 4 layers against MBOIT's 6 moments): paper and
+        # ours compare with the baseline at that size, not at the row's.
+        self.baseline_own_size = baseline_own_size
         # The paper's scenes (powerplant, village, ...) are not shipped: compare with the median over ours.
         self.any_scene = any_scene
         # The presets that rerun this table: where the given CSVs hold rows of one of them, only those
@@ -186,6 +195,9 @@ TABLES = [
                "AT", any_scene=True, presets=("bruell2018-approx",)),
     PaperTable("bruell-6.3", "bruell2018-thesis", "6.3", "Brüll 2018 6.3: HAT vs UHAT (ours: median over our scenes)",
                "HAT", any_scene=True, presets=("bruell2018-approx",)),
+    PaperTable("mboit-fig1", "muenstermann2018-mboit", "1",
+               "Münstermann 2018 figure 1: MBOIT vs MLAB vs depth peeling (ours: median over our scenes)", "MLAB",
+               any_scene=True, presets=("muenstermann2018-mboit",), baseline_own_size=True),
     PaperTable("sintorn-poster", "sintorn-hair-poster", "results",
                "Sintorn et al. poster: 256-slice radix sort of hair line segments (ours: the lines experiment)",
                "", kind="lines", presets=("sintorn-lines",)),
@@ -359,15 +371,19 @@ def build_rows(table, paper_rows, ours):
         paper_value = oitcsv.to_float(r["value"])
         ours_ms, n = ours.lookup(r["technique"], r["size"], our_scene, r["metric"], our_view)
         base_tech = baseline_name(table, r["technique"])
+        base_size = r["size"]
         if table.kind == "speedups":
             paper_speedup = paper_value
         else:
             base = next((b for b in rows if b["technique"] == base_tech and b["scene"] == r["scene"] and
-                         b["view"] == r["view"] and b["size"] == r["size"] and b["metric"] == r["metric"]), None)
+                         b["view"] == r["view"] and (table.baseline_own_size or b["size"] == r["size"]) and
+                         b["metric"] == r["metric"]), None)
             base_v = oitcsv.to_float(base["value"]) if base else None
             paper_speedup = base_v / paper_value if base_v and paper_value else None
+            if table.baseline_own_size and base:
+                base_size = base["size"]
         metric = metric_base(r["metric"]) if table.kind == "speedups" else r["metric"]
-        ours_base, _ = ours.lookup(base_tech, r["size"], our_scene, metric, our_view)
+        ours_base, _ = ours.lookup(base_tech, base_size, our_scene, metric, our_view)
         if table.kind == "speedups":
             ours_ms, n = ours.lookup(r["technique"], r["size"], our_scene, metric, our_view)
         ours_speedup = ours_base / ours_ms if ours_base and ours_ms else None

@@ -2,6 +2,7 @@
 // micro/oit/exact_case.cpp) and approximate OIT (Brüll 2018; micro/oit/approx.cpp) on scenes kept
 // as data (scenes/*.json). This file declares the parameter grid; the cases live in micro/oit/
 // so that `oitbench view` renders with the same code.
+#include <algorithm>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -12,6 +13,7 @@
 #include "oit/approx.hpp"
 #include "oit/fragment_storage.hpp"
 #include "oit/metrics.hpp"
+#include "oit/moments.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/peel.hpp"
 #include "oit/scene.hpp"
@@ -27,6 +29,8 @@ std::vector<std::string> all_techniques() {  // exact, depth peeling, approximat
   std::vector<std::string> t = exact_technique_names();
   for (const auto& a : peel_technique_names()) t.push_back(a);
   for (const auto& a : approx_technique_names()) t.push_back(a);
+  // MBOIT and STOCHASTIC before unsorted, which stays last: the no-OIT baseline.
+  t.insert(std::find(t.begin(), t.end(), "unsorted"), moment_technique_names().begin(), moment_technique_names().end());
   return t;
 }
 
@@ -38,7 +42,7 @@ class OitExperiment final : public Experiment {
            "(PPLL) or packed per-pixel arrays (PPPA), resolved by "
            "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
            "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, "
-           "micro/oit/approx.cpp) "
+           "micro/oit/approx.cpp; MBOIT, Muenstermann 2018; STOCHASTIC, Enderton 2010, micro/oit/moments.hpp) "
            "is validated against each technique's own CPU model, its error vs the exact image reported as data. "
            "Depth peeling (Everitt 2001 DP, Bavoil & Myers 2008 DDP, micro/oit/peel_case.cpp) is exact when it "
            "peels every layer, validated against a CPU model of the layers it peeled when max_layers stops it";
@@ -152,6 +156,7 @@ class OitExperiment final : public Experiment {
         max_frags, cs_group, auto_cache, shadow_slices,   shadow_resolution, frag_colour, frag_depth};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     for (auto& a : peel_params()) ps.push_back(std::move(a));
+    for (auto& a : moment_params()) ps.push_back(std::move(a));
     return ps;
   }
   std::vector<MetricSpec> metric_specs() const override {
@@ -209,7 +214,15 @@ class OitExperiment final : public Experiment {
          "DP, DDP: yes when the occlusion query found no fragment left (exact), no when max_layers stopped it"},
         {"bytes_per_pixel", T::Number, "bytes",
          "the technique's per-pixel storage at this resolution (fragment pool, node arrays, accumulation and "
-         "peeling targets; not the output image)"}};
+         "peeling targets; not the output image)"},
+        // MBOIT and STOCHASTIC (micro/oit/moments.hpp)
+        {"moment_bias", T::Number, "", "MBOIT: the moment bias used (the paper's value for the variant)"},
+        {"moment_rebiased", T::Number, "",
+         "MBOIT: fraction of fragments whose pixel's moments were inconsistent at that bias (rounded "
+         "storage), so the reconstruction raised it tenfold (up to 1000x; the CPU model's count)"},
+        {"model_off_channels", T::Integer, "",
+         "MBOIT: channel values more than the tolerance from the CPU model (up to 1% allowed)"},
+        {"msaa_samples", T::Integer, "", "STOCHASTIC: MSAA samples per pass (samples_per_pixel / passes)"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());
     for (auto& x : image_error_metrics()) m.push_back(std::move(x));

@@ -19,6 +19,7 @@ namespace oitbench::oit {
 enum class ApproxTechnique { Mlab, Umlab, Ht, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted };
 
 const std::vector<std::string>& approx_technique_names();  // MLAB UMLAB HT AT HAT UAT UHAT LAAT WBOIT unsorted
+// Also true for MBOIT and STOCHASTIC (moments.hpp), which make_approx_case hands to their own cases.
 bool is_approx_technique(const std::string& name);
 ApproxTechnique parse_approx_technique(const std::string& name);  // throws std::invalid_argument
 

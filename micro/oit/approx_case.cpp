@@ -15,6 +15,7 @@
 #include "oit/gpu_mesh.hpp"
 #include "oit/image_compare.hpp"
 #include "oit/image_io.hpp"
+#include "oit/moments.hpp"
 #include "oit/reference.hpp"
 #include "oit/scene.hpp"
 #include "oit/scene_passes.hpp"
@@ -44,7 +45,9 @@ std::string fmt(double v) {
 
 const std::vector<std::string>& approx_technique_names() { return kNames; }
 bool is_approx_technique(const std::string& name) {
-  return std::find(kNames.begin(), kNames.end(), name) != kNames.end();
+  const auto& moments = moment_technique_names();
+  return std::find(kNames.begin(), kNames.end(), name) != kNames.end() ||
+         std::find(moments.begin(), moments.end(), name) != moments.end();
 }
 ApproxTechnique parse_approx_technique(const std::string& name) {
   auto it = std::find(kNames.begin(), kNames.end(), name);
@@ -99,7 +102,9 @@ std::vector<ParamSpec> approx_params() {
   ps[2].only_when("technique", {"WBOIT"});
   ps[3].only_when("technique", arrays);
   ps[4].only_when("technique", guarded);
-  ps[5].only_when("technique", approx_technique_names());
+  std::vector<std::string> all = approx_technique_names();
+  for (const auto& t : moment_technique_names()) all.push_back(t);
+  ps[5].only_when("technique", all);
   return ps;
 }
 namespace {
@@ -459,6 +464,8 @@ class ApproxCase final : public OitCase {
 }  // namespace
 
 std::unique_ptr<OitCase> make_approx_case(const ParamSet& p, CaseContext& ctx) {
+  if (p.get("technique") == "MBOIT") return make_mboit_case(p, ctx);
+  if (p.get("technique") == "STOCHASTIC") return make_stochastic_case(p, ctx);
   return std::make_unique<ApproxCase>(p, ctx);
 }
 

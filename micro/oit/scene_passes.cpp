@@ -172,7 +172,7 @@ std::map<std::string, std::string> ScenePasses::resolved_params() const {
 }
 
 Defines ScenePasses::depth_sampler_defines() const {
-  Defines d = defines();
+  Defines d;  // what a program built with geometry_defines() adds for opaque_hides()
   if (opaque_ && !skip_depth_test_) d.push_back({"OPAQUE_DEPTH_SAMPLER", ""});  // the fault skips the test
   return d;
 }

@@ -72,7 +72,8 @@ class ScenePasses {
   bool self_shadowing() const { return shadow_ != nullptr; }
   // The parameters of effects that did not run, emptied for the rows (like a scoped parameter).
   std::map<std::string, std::string> resolved_params() const;
-  // defines() plus OPAQUE_DEPTH_SAMPLER: for a technique whose shaders call opaque_hides().
+  // OPAQUE_DEPTH_SAMPLER (with the opaque effect): added to geometry_defines() by a technique whose
+  // shaders call opaque_hides() (it cannot use the opaque depth buffer's own test).
   Defines depth_sampler_defines() const;
   // Sets `background` and binds the opaque colour at its unit (effects.h).
   void bind_backdrop(GLuint program) const;

@@ -141,8 +141,8 @@ INSTANTIATE_TEST_SUITE_P(ShippedScenes, EffectPasses, ::testing::ValuesIn(shippe
 class Effects : public GlTest {};
 
 TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
-  for (const char* technique :
-       {"BASE-IS", "BMA-IS", "CS-IS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted", "HT", "DP", "DDP"}) {
+  for (const char* technique : {"BASE-IS", "BMA-IS", "CS-IS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted", "HT",
+                                "DP", "DDP", "MBOIT", "STOCHASTIC"}) {
     std::map<std::string, std::string> p = {
         {"scene", "house-opaque"}, {"view", "V1"}, {"technique", technique}, {"detail", "full"}};
     p["effects"] = "transparency";
@@ -161,8 +161,8 @@ TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
 }
 
 TEST_F(Effects, DroppingTheOpaqueDepthTestFailsEveryTechnique) {
-  for (const char* technique :
-       {"BASE-IS", "BMA-RBS-L", "CS-IMS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted", "HT", "DP", "DDP"}) {
+  for (const char* technique : {"BASE-IS", "BMA-RBS-L", "CS-IMS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted", "HT",
+                                "DP", "DDP", "MBOIT", "STOCHASTIC"}) {
     std::map<std::string, std::string> p = {{"scene", "house-opaque"},
                                             {"view", "V1"},
                                             {"technique", technique},

@@ -181,6 +181,47 @@ class TablesPublished(TempDirTest):
                 self.assertIn(f"`{name}`", readme, f"results/published/README.md does not describe {name}")
 
 
+class TablesMboit(TempDirTest):
+    """Münstermann 2018 figure 1 beside our MBOIT, MLAB and (where the build has it) DP rows."""
+
+    def run_csv(self, with_dp):
+        rows = []
+        for scene in ("planes", "hairball"):
+            for technique, extra, ms in (("MBOIT", {"moments": 6, "moment_kind": "power", "moment_bits": 16}, 30.0),
+                                         ("MBOIT", {"moments": 6, "moment_kind": "trigonometric",
+                                                    "moment_bits": 32}, 40.0),
+                                         ("MBOIT", {"moments": 4, "moment_kind": "power", "moment_bits": 16}, 5.0),
+                                         ("MLAB", {"nodes": 4}, 60.0), ("MLAB", {"nodes": 8}, 1.0),
+                                         ("DP", {}, 240.0)):
+                if technique == "DP" and not with_dp:
+                    continue
+                rows.append(dict({"experiment": "oit", "variant": "", "technique": technique, "scene": scene,
+                                  "pass": "total", "median_ms": ms}, **extra))
+        return syn.write_summary(self.path("mboit.csv"), rows,
+                                 params=["scene", "technique", "nodes", "moments", "moment_kind", "moment_bits"])
+
+    def table(self, with_dp):
+        out = run_script("tables.py", self.run_csv(with_dp), "--table", "mboit", "--format", "csv").stdout
+        return {r["technique"]: r for r in csv.DictReader(io.StringIO(out))}
+
+    def test_paper_rows_with_our_ratios_over_mlab(self):
+        t = self.table(with_dp=True)
+        self.assertEqual(float(t["MBOIT power 16-bit"]["paper"]), 12)
+        self.assertAlmostEqual(float(t["MBOIT power 16-bit"]["paper_speedup"]), 16 / 12, places=4)
+        self.assertAlmostEqual(float(t["MBOIT power 16-bit"]["ours_ms"]), 30.0)  # 6 moments, not the 4
+        self.assertAlmostEqual(float(t["MBOIT power 16-bit"]["ours_speedup"]), 2.0)  # MLAB with 4 nodes
+        self.assertAlmostEqual(float(t["MBOIT trigonometric 32-bit"]["ours_speedup"]), 1.5)
+        self.assertAlmostEqual(float(t["DP"]["paper_speedup"]), 16 / 123, places=4)
+        self.assertAlmostEqual(float(t["DP"]["ours_speedup"]), 0.25)
+
+    def test_without_depth_peeling_its_row_is_empty(self):
+        t = self.table(with_dp=False)
+        self.assertEqual(t["DP"]["ours_ms"], "")
+        self.assertAlmostEqual(float(t["MBOIT power 16-bit"]["ours_speedup"]), 2.0)
+        out = run_script("tables.py", self.run_csv(False), "--table", "mboit").stdout
+        self.assertIn("| DP | 123 ms | 0.13x | \u2014 | \u2014 |", out)
+
+
 class TablesFromReferenceRuns(unittest.TestCase):
     """The approximate-OIT and line-primitive tables on the committed llvmpipe runs."""
 

@@ -1,0 +1,23 @@
+// STOCHASTIC pass 1 (per MSAA pass): the fragment covers the samples of its alpha-drawn mask, and
+// the depth test (less, writing) keeps the nearest covering surface per sample. The fragment's
+// depth is written for all its samples (gl_FragDepth), the same value the accumulation tests.
+#include "../common/oitbench.glsl"
+#include "../approx/nodes.glsl"
+#include "hash.glsl"
+// The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
+#include "../oit/backdrop.glsl"
+#include "../oit/shade.glsl"
+in vec4 vColour;
+in vec3 vWorld;
+in vec2 vUv;
+in float vSoft;
+uniform uint frameSeed;
+uniform uint passIndex;
+void main() {
+  if (opaque_hides(ivec2(gl_FragCoord.xy), gl_FragCoord.z)) discard;
+  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  uint alpha_byte = packUnorm4x8(c) >> 24;
+  gl_SampleMask[0] = int(stochastic_mask(frameSeed, passIndex, uvec2(gl_FragCoord.xy), uint(gl_PrimitiveID), alpha_byte,
+                                         uint(MSAA_SAMPLES)));
+  gl_FragDepth = gl_FragCoord.z;
+}
