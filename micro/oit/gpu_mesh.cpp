@@ -15,6 +15,19 @@ void upload(const gl::Buffer& b, const std::vector<unsigned>& data) {
 
 }  // namespace
 
+void bind_vertex_layout(GLuint vao, GLuint vertices) {
+  glVertexArrayVertexBuffer(vao, 0, vertices, 0, sizeof(Vertex));
+  glEnableVertexArrayAttrib(vao, 0);
+  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
+  glEnableVertexArrayAttrib(vao, 1);
+  glVertexArrayAttribFormat(vao, 1, 4, GL_FLOAT, GL_FALSE, offsetof(Vertex, colour));
+  glEnableVertexArrayAttrib(vao, 2);
+  glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
+  glEnableVertexArrayAttrib(vao, 3);
+  glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE, offsetof(Vertex, soft));
+  for (GLuint a = 0; a < 4; ++a) glVertexArrayAttribBinding(vao, a, 0);
+}
+
 GpuMesh::GpuMesh(const Mesh& mesh) : GpuMesh(mesh, mesh.indices, mesh.line_indices) {}
 
 GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& triangles) : GpuMesh(mesh, triangles, {}) {}
@@ -31,19 +44,8 @@ GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& triangles, const
                        mesh.vertices.empty() ? nullptr : mesh.vertices.data(), 0);
   upload(indices_, triangles);
   upload(lines_, lines);
-  GLuint vao = vao_.get();
-  glVertexArrayVertexBuffer(vao, 0, vertices_.get(), 0, sizeof(Vertex));
-  glVertexArrayElementBuffer(vao, indices_.get());
-  // Locations match shaders/oit/capture.vert.
-  glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
-  glEnableVertexArrayAttrib(vao, 1);
-  glVertexArrayAttribFormat(vao, 1, 4, GL_FLOAT, GL_FALSE, offsetof(Vertex, colour));
-  glEnableVertexArrayAttrib(vao, 2);
-  glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
-  glEnableVertexArrayAttrib(vao, 3);
-  glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE, offsetof(Vertex, soft));
-  for (GLuint a = 0; a < 4; ++a) glVertexArrayAttribBinding(vao, a, 0);
+  bind_vertex_layout(vao_.get(), vertices_.get());
+  glVertexArrayElementBuffer(vao_.get(), indices_.get());
 }
 
 void GpuMesh::draw() const {

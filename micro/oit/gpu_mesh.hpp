@@ -9,6 +9,10 @@
 
 namespace oitbench::oit {
 
+// Describes oit::Vertex records in `vertices` (binding 0) to `vao` at the locations
+// shaders/oit/capture.vert reads: the one place that layout is written.
+void bind_vertex_layout(GLuint vao, GLuint vertices);
+
 class GpuMesh {
  public:
   // The transparent primitives: mesh.indices (triangles) and mesh.line_indices (segments).

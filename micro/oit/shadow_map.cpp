@@ -10,6 +10,7 @@
 
 #include "gl/render_target.hpp"
 #include "oit/fragment_lists.hpp"
+#include "oit/gpu_mesh.hpp"
 #include "shaders/shadow/bindings.h"
 
 namespace oitbench::oit {
@@ -124,18 +125,8 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
     sets_.push_back(std::move(set));
   }
 
-  vao_ = gl::make_vertex_array();  // gpu_mesh.cpp's layout, for shaders/oit/capture.vert
-  GLuint vao = vao_.get();
-  glVertexArrayVertexBuffer(vao, 0, vertices_.get(), 0, sizeof(Vertex));
-  glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
-  glEnableVertexArrayAttrib(vao, 1);
-  glVertexArrayAttribFormat(vao, 1, 4, GL_FLOAT, GL_FALSE, offsetof(Vertex, colour));
-  glEnableVertexArrayAttrib(vao, 2);
-  glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
-  glEnableVertexArrayAttrib(vao, 3);
-  glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE, offsetof(Vertex, soft));
-  for (GLuint a = 0; a < 4; ++a) glVertexArrayAttribBinding(vao, a, 0);
+  vao_ = gl::make_vertex_array();  // for shaders/oit/capture.vert
+  bind_vertex_layout(vao_.get(), vertices_.get());
 
   map_ = gl::make_texture(GL_TEXTURE_3D);
   glTextureStorage3D(map_.get(), 1, GL_R32F, resolution_, resolution_, slices_ + 1);
