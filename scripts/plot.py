@@ -355,6 +355,12 @@ def oit_label(row):
         t += f"/{row['wboit_weight']}"
     if t in OIT_PEEL and row.get("max_layers") not in (None, "", "0"):
         t += f"/{row['max_layers']}"
+    if t == "MBOIT" and row.get("moments"):  # MBOIT/6p: 6 power moments; /3t trigonometric; /16 bits
+        t += f"/{row['moments']}{'t' if row.get('moment_kind') == 'trigonometric' else 'p'}"
+        if row.get("moment_bits") == "16":
+            t += "/16"
+    if t == "STOCHASTIC" and row.get("samples_per_pixel"):
+        t += f"/{row['samples_per_pixel']}"
     # Fragment formats other than the papers' (rgba8, window depth) are part of the case's name.
     for col, default in (("frag_colour", "rgba8"), ("frag_depth", "window")):
         if row.get(col) and row[col] != default:
