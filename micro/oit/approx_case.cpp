@@ -379,26 +379,10 @@ class ApproxCase final : public OitCase {
       m["capped_updates"] = std::to_string(capped);
     }
     if (frames_.size() >= 2) {
-      // Per-pixel variance across the frames (mean over channels), averaged and at its peak.
-      double sum = 0, peak = 0;
-      size_t changed = 0;
-      size_t k = frames_.size();
-      for (size_t i = 0; i < rgb.size(); i += 3) {
-        double var_px = 0;
-        for (int c = 0; c < 3; ++c) {
-          double mean = 0, sq = 0;
-          for (const auto& f : frames_) mean += f[i + c];
-          mean /= k;
-          for (const auto& f : frames_) sq += (f[i + c] - mean) * (f[i + c] - mean);
-          var_px += sq / k / 3.0;
-        }
-        sum += var_px;
-        peak = std::max(peak, var_px);
-        changed += var_px > 0;
-      }
-      m["flicker"] = fmt(sum / (rgb.size() / 3));
-      m["flicker_max"] = fmt(peak);
-      m["flicker_pixels"] = std::to_string(changed);
+      Flicker f = flicker_of(frames_);
+      m["flicker"] = fmt(f.mean);
+      m["flicker_max"] = fmt(f.peak);
+      m["flicker_pixels"] = std::to_string(f.changed);
     }
     if (!dump_.empty()) write_result_images(dump_, rgb, std::vector<double>(ref.begin(), ref.end()), width_, height_);
 

@@ -74,4 +74,25 @@ ImageError compare_with_reference(const std::vector<float>& rgba, const std::vec
   return e;
 }
 
+Flicker flicker_of(const std::vector<std::vector<float>>& frames) {
+  Flicker f;
+  if (frames.size() < 2) return f;
+  const size_t k = frames.size(), n = frames[0].size();
+  for (size_t i = 0; i + 2 < n; i += 3) {
+    double var_px = 0;
+    for (int c = 0; c < 3; ++c) {
+      double mean = 0, sq = 0;
+      for (const auto& fr : frames) mean += fr[i + c];
+      mean /= k;
+      for (const auto& fr : frames) sq += (fr[i + c] - mean) * (fr[i + c] - mean);
+      var_px += sq / k / 3.0;
+    }
+    f.mean += var_px;
+    f.peak = std::max(f.peak, var_px);
+    f.changed += var_px > 0;
+  }
+  f.mean /= static_cast<double>(n / 3);
+  return f;
+}
+
 }  // namespace oitbench::oit

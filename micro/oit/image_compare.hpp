@@ -26,6 +26,15 @@ struct ApproxError {
 };
 ApproxError approx_error(const std::vector<float>& rgb, const std::vector<double>& reference);
 
+// The flicker metric of every technique with per-frame randomness or races (RGB frames of one
+// case): per-pixel variance across frames (mean over channels), averaged over pixels and at its
+// peak, and the pixels that changed at all.
+struct Flicker {
+  double mean = 0, peak = 0;
+  size_t changed = 0;
+};
+Flicker flicker_of(const std::vector<std::vector<float>>& frames);
+
 // What an image holds outside displayable colours (the PFM keeps it; the PNG cannot show it):
 // channel values that are NaN or infinite, and pixels with a finite colour channel outside [0, 1].
 // `channels` 3 (RGB) or 4 (RGBA as the exact resolves write it; alpha is not a colour there).

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "oit/fragment_storage.hpp"
+#include "oit/image_compare.hpp"
 #include "oit/moments.hpp"
 #include "oit/reference.hpp"
 
@@ -65,11 +66,5 @@ struct ModelCheck {
 };
 ModelCheck check_against_model(const std::vector<float>& rgb, const std::vector<double>& model, int width,
                                double tolerance);
-struct Flicker {
-  double mean = 0, peak = 0;
-  size_t changed = 0;
-};
-// Per-pixel variance across frames (mean over channels), averaged over pixels and at its peak.
-Flicker flicker_of(const std::vector<std::vector<float>>& frames);
 
 }  // namespace oitbench::oit
