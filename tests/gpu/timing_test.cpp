@@ -27,8 +27,9 @@ const Row& pass_row(const std::vector<Row>& rows, const std::string& pass) {
 
 // On llvmpipe the GL queries time only part of the work: forced to be the primary clock (--timer
 // gpu), they would report CPU-NATIVE's C++ resolve as about nothing. It is a CPU pass, so its median
-// is its CPU time under either clock (at least half of the --timer cpu run's, allowing for this
-// machine's noise between two runs), and the GL capture pass does take the forced clock.
+// is its CPU time under either clock (at least a fifth of the --timer cpu run's: the failure is a
+// median of about nothing, and two runs on this 2-core machine have differed by more than 2x), and
+// the GL capture pass does take the forced clock.
 TEST(Timing, CpuNativesResolveKeepsItsCpuTimeUnderTheGpuClock) {
   auto gpu = cpu_native_rows("gpu", "timer_gpu");
   auto cpu = cpu_native_rows("cpu", "timer_cpu");
@@ -39,7 +40,7 @@ TEST(Timing, CpuNativesResolveKeepsItsCpuTimeUnderTheGpuClock) {
     EXPECT_EQ(g.at("timer"), "cpu") << pass;
     EXPECT_EQ(g.at("gpu_median_ms"), "") << pass << ": a CPU pass has no query";
     double gm = std::stod(g.at("median_ms")), cm = std::stod(c.at("median_ms"));
-    EXPECT_GE(gm, 0.5 * cm) << pass << ": --timer gpu " << gm << " ms vs --timer cpu " << cm << " ms";
+    EXPECT_GE(gm, 0.2 * cm) << pass << ": --timer gpu " << gm << " ms vs --timer cpu " << cm << " ms";
     EXPECT_EQ(g.at("median_ms"), g.at("cpu_median_ms")) << pass;
   }
   EXPECT_EQ(pass_row(gpu, "capture").at("timer"), "gpu");
