@@ -16,6 +16,7 @@
 #include "oit/moments.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/peel.hpp"
+#include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
 #include "oit/scene_passes.hpp"
 
@@ -136,6 +137,20 @@ class OitExperiment final : public Experiment {
                          {"window"},
                          {},
                          frag_depth_names()};
+    ParamSpec block_sort{"block_sort",
+                         "how RBS sorts each register block: insertion (RS, Knowles 2014 Listing 5: an insertion "
+                         "network with branches), bitonic or odd-even-merge (branchless register networks, fully "
+                         "unrolled: shaders/sorts/network.glsl)",
+                         {"insertion"},
+                         {},
+                         block_sort_names()};
+    ParamSpec order_check{"order_check",
+                          "IS and IMS resolves: on checks each pixel's list order while loading it and skips the "
+                          "sort of a list already far-to-near and reverses one near-to-far in O(n) (the lists "
+                          "of front-to-back or back-to-front submission); off sorts every list (the papers)",
+                          {"off"},
+                          {},
+                          {"off", "on"}};
     // Each technique parameter is scoped to the techniques that read it, so a row carries only its own.
     const auto& exact = exact_technique_names();
     auto exact_but = [&](const std::string& skip) {
@@ -149,11 +164,14 @@ class OitExperiment final : public Experiment {
     max_frags.only_when("technique", exact_but("CPU-NATIVE"));
     cs_group.only_when("technique", {"CS-IS", "CS-IMS", "CS-RBS-L"});
     auto_cache.only_when("technique", {"BMA-AUTO"});
+    block_sort.only_when("technique", {"BASE-RBS-L", "BMA-RBS-L", "CS-RBS-L", "RBS-G"});
+    order_check.only_when("technique", {"BASE-IS", "BASE-IMS", "BMA-IS", "BMA-IMS", "CS-IS", "CS-IMS"});
     frag_colour.only_when("technique", exact);
     frag_depth.only_when("technique", exact);
     std::vector<ParamSpec> ps = {
-        scene,     view,     technique,  effects_param(), capture,           detail,      block,     pool,
-        max_frags, cs_group, auto_cache, shadow_slices,   shadow_resolution, frag_colour, frag_depth};
+        scene,      view,     technique,  effects_param(), capture,           detail,      block,      pool,
+        max_frags,  cs_group, auto_cache, shadow_slices,   shadow_resolution, frag_colour, frag_depth, block_sort,
+        order_check};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     for (auto& a : peel_params()) ps.push_back(std::move(a));
     for (auto& a : moment_params()) ps.push_back(std::move(a));

@@ -54,12 +54,22 @@ const std::vector<Algorithm>& algorithms() {
        "register form (memory=local only)"},
       {"bitonic", "sorts/bitonic.glsl", "SORT_USE_BITONIC", nullptr, true, true, ""},
       {"odd-even-merge", "sorts/odd_even_merge.glsl", "SORT_USE_ODD_EVEN_MERGE", nullptr, true, true, ""},
+      {"bitonic-network", "sorts/network.glsl", "SORT_USE_NETWORK", "SORT_NETWORK_BITONIC", false, true,
+       "bitonic-network is unrolled into literal indices by scripts/sort_networks.py: it has no local-memory form "
+       "(memory=registers only)"},
+      {"odd-even-merge-network", "sorts/network.glsl", "SORT_USE_NETWORK", "SORT_NETWORK_ODD_EVEN_MERGE", false, true,
+       "odd-even-merge-network is unrolled into literal indices by scripts/sort_networks.py: it has no local-memory "
+       "form (memory=registers only)"},
       {"rbs", "sorts/register_sort.glsl", "SORT_USE_REGISTER_SORT", nullptr, false, true,
        "rbs is Knowles 2014 Listing 5, an insertion network unrolled by hand with literal indices: it has no "
        "local-memory form (memory=registers only)"},
   };
   return table;
 }
+
+bool is_network(const Algorithm& a) { return std::string(a.use_define) == "SORT_USE_NETWORK"; }
+
+constexpr const char* kInt64 = "GL_ARB_gpu_shader_int64";
 
 const Algorithm& algorithm(const std::string& variant) {
   for (const auto& a : algorithms())
@@ -127,6 +137,7 @@ class SortCase final : public CaseInstance {
                        {p.get("memory") == "registers" ? "MEMORY_REGISTERS" : "MEMORY_LOCAL", ""},
                        {a.use_define, ""}};
     if (a.extra_define) defines.push_back({a.extra_define, ""});
+    if (is_network(a) && p.get("compare") == "min-max") defines.push_back({"SORT_PACKED_KEY64", ""});
     if (std::string assign = p.get("assign"); std::string(a.variant) == "insertion-naive") {
       if (assign == "listing") assign = "direct";
       std::string define = "SORT_ASSIGN_" + assign;
@@ -135,6 +146,7 @@ class SortCase final : public CaseInstance {
       defines.push_back({define, ""});
     }
     sort_source_ = ctx.shaders().source_id(a.file);
+    if (is_network(a)) sort_source_ += "+" + ctx.shaders().source_id("sorts/network_tables.glsl");
     program_ = compute_
                    ? ctx.build({{GL_COMPUTE_SHADER, "sort/sort.comp"}}, defines)
                    : ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "sort/sort.frag"}},
@@ -235,7 +247,8 @@ class SortExperiment final : public Experiment {
                       "write), insertion-v2 (Listing 4.12), bubble / bubble-early (Listing 4.10), shell (4.13; "
                       "miscompiled by llvmpipe), "
                       "shell-offset (4.13 indexed like 4.11), shell-register (4.14), merge (bottom-up), bitonic, "
-                      "odd-even-merge (networks), rbs (Knowles "
+                      "odd-even-merge (networks as loops), bitonic-network, odd-even-merge-network (the "
+                      "same networks fully unrolled, branchless compare-exchanges: sorts/network.glsl), rbs (Knowles "
                       "Listing 5)",
                       variant_names(),
                       {"insertion-naive", "insertion-v2", "rbs"},
@@ -271,7 +284,14 @@ class SortExperiment final : public Experiment {
                      {"listing"},
                      {},
                      {"listing", "direct", "loop", "switch", "if-else"}};
-    return {variant, n, stage, memory, keys, assign};
+    ParamSpec compare{"compare",
+                      "the register networks' compare-exchange: min-max of the fragment as one 64-bit key (depth key "
+                      "high, payload low; needs GL_ARB_gpu_shader_int64) or select (one comparison, two selects)",
+                      {"min-max"},
+                      {},
+                      {"min-max", "select"}};
+    compare.only_when("variant", {"bitonic-network", "odd-even-merge-network"});
+    return {variant, n, stage, memory, keys, assign, compare};
   }
   std::vector<MetricSpec> metric_specs() const override {
     return {{"unsorted_pixels", ValueType::Integer, "", "pixels whose keys are out of order after the sort"},
@@ -282,8 +302,11 @@ class SortExperiment final : public Experiment {
   // local-memory insertion sort of 32 reverse-ordered keys still takes ~0.1 s per pass on llvmpipe.
   Resolution default_resolution() const override { return {256, 256}; }
   Resolution quick_resolution() const override { return {128, 128}; }
-  std::string unsupported_reason(const GlInfo&, const ParamSet& p) const override {
+  std::string unsupported_reason(const GlInfo& gl, const ParamSet& p) const override {
     const Algorithm& a = algorithm(p.get("variant"));
+    if (is_network(a) && p.get("compare") == "min-max" && !gl.has_extension(kInt64))
+      return std::string("compare=min-max reads the fragment as a 64-bit key: the driver lacks ") + kInt64 +
+             " (compare=select works everywhere)";
     bool registers = p.get("memory") == "registers";
     if ((registers && !a.has_registers) || (!registers && !a.has_local)) return a.why_not;
     if (p.get("assign") != "listing" && std::string(a.variant) != "insertion-naive")

@@ -32,7 +32,7 @@ SortChoiceCache::SortChoiceCache(std::string path) : path_(std::move(path)), ent
 
 std::string SortChoiceCache::key(const GlInfo& gl, unsigned interval_top, unsigned block, const std::string& order) {
   return gl.renderer + " | " + gl.version + " | interval " + std::to_string(interval_top) + " | block " +
-         std::to_string(block) + " | " + order;
+         std::to_string(block) + " | " + order + " | candidates 2";  // 2: with the networks and the order check
 }
 
 std::vector<std::string> interval_orders(const HostLists& lists, const ListStats& stats,
@@ -65,19 +65,20 @@ std::vector<std::string> interval_orders(const HostLists& lists, const ListStats
   return out;
 }
 
-std::optional<ResolveSort> SortChoiceCache::find(const std::string& key) const {
+std::optional<SortChoice> SortChoiceCache::find(const std::string& key) const {
   auto it = entries_.find(key);
   if (it == entries_.end() || !it->is_object() || !it->contains("sort") || !(*it)["sort"].is_string())
     return std::nullopt;
   try {
-    return parse_sort_label((*it)["sort"].get<std::string>());
+    return parse_choice_label((*it)["sort"].get<std::string>());
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
 }
 
-void SortChoiceCache::put(const std::string& key, ResolveSort sort, const std::map<std::string, double>& timings_ms) {
-  entries_[key] = {{"sort", sort_label(sort)}, {"median_ms", timings_ms}};
+void SortChoiceCache::put(const std::string& key, const SortChoice& sort,
+                          const std::map<std::string, double>& timings_ms) {
+  entries_[key] = {{"sort", choice_label(sort)}, {"median_ms", timings_ms}};
 }
 
 void SortChoiceCache::save() const {
@@ -95,16 +96,22 @@ void SortChoiceCache::save() const {
   if (ec) std::filesystem::remove(tmp, ec);
 }
 
-std::vector<ResolveSort> bma_auto_candidates(unsigned interval_top) {
+std::vector<SortChoice> bma_auto_candidates(unsigned interval_top) {
+  std::vector<SortChoice> c = {{ResolveSort::IS}, {ResolveSort::IS, BlockSort::Insertion, true}};
   // IMS sorts by insertion up to 32 fragments: below that it is IS under another name.
-  if (interval_top <= 32) return {ResolveSort::IS, ResolveSort::RBS_L};
-  return {ResolveSort::IS, ResolveSort::IMS, ResolveSort::RBS_L};
+  if (interval_top > 32) {
+    c.push_back({ResolveSort::IMS});
+    c.push_back({ResolveSort::IMS, BlockSort::Insertion, true});
+  }
+  for (BlockSort b : {BlockSort::Insertion, BlockSort::Bitonic, BlockSort::OddEvenMerge})
+    c.push_back({ResolveSort::RBS_L, b});
+  return c;
 }
 
 BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, const std::vector<unsigned>& pixels,
                                     const std::vector<std::string>& orders, const GlInfo& gl, unsigned block,
                                     SortChoiceCache& cache, bool use_cache,
-                                    const std::function<CandidateResult(size_t, ResolveSort)>& measure) {
+                                    const std::function<CandidateResult(size_t, const SortChoice&)>& measure) {
   BmaAutoChoice choice;
   choice.sort.resize(interval_tops.size());
   bool any_cached = false, any_calibrated = false, dirty = false;
@@ -119,24 +126,24 @@ BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, 
     }
     any_calibrated = true;
     std::map<std::string, double> ms;
-    std::optional<ResolveSort> best;
+    std::optional<SortChoice> best;
     double best_ms = INFINITY;
     timings << (timings.tellp() > 0 ? " " : "") << interval_tops[i] << "/" << (i < orders.size() ? orders[i] : "mixed")
             << ":";
     bool first = true;
-    for (ResolveSort s : bma_auto_candidates(interval_tops[i])) {
+    for (const SortChoice& s : bma_auto_candidates(interval_tops[i])) {
       CandidateResult r = measure(i, s);
-      timings << (first ? "" : ",") << sort_label(s) << "=" << (r.valid ? "" : "invalid/") << r.median_ms;
+      timings << (first ? "" : ",") << choice_label(s) << "=" << (r.valid ? "" : "invalid/") << r.median_ms;
       first = false;
       if (!r.valid) continue;
-      ms[sort_label(s)] = r.median_ms;
+      ms[choice_label(s)] = r.median_ms;
       if (r.median_ms < best_ms) {
         best_ms = r.median_ms;
         best = s;
       }
     }
     // No valid candidate: fall back to IS (the run is then validated, and fails, like any other).
-    choice.sort[i] = best.value_or(ResolveSort::IS);
+    choice.sort[i] = best.value_or(SortChoice{ResolveSort::IS});
     if (best) {
       cache.put(key, *best, ms);
       dirty = true;
@@ -152,7 +159,7 @@ std::string describe_choice(const std::vector<unsigned>& interval_tops, const Bm
   std::string s;
   for (size_t i = 0; i < interval_tops.size() && i < choice.sort.size(); ++i)
     if (choice.sort[i])
-      s += (s.empty() ? "" : " ") + std::to_string(interval_tops[i]) + ":" + sort_label(*choice.sort[i]);
+      s += (s.empty() ? "" : " ") + std::to_string(interval_tops[i]) + ":" + choice_label(*choice.sort[i]);
   return s;
 }
 

@@ -29,8 +29,8 @@ class SortChoiceCache {
  public:
   explicit SortChoiceCache(std::string path);  // a missing or unreadable file is an empty cache
   static std::string key(const GlInfo& gl, unsigned interval_top, unsigned block, const std::string& order);
-  std::optional<ResolveSort> find(const std::string& key) const;
-  void put(const std::string& key, ResolveSort sort, const std::map<std::string, double>& timings_ms);
+  std::optional<SortChoice> find(const std::string& key) const;
+  void put(const std::string& key, const SortChoice& sort, const std::map<std::string, double>& timings_ms);
   void save() const;  // creates the folder; a failure to write is ignored (the cache is an optimisation)
 
  private:
@@ -43,12 +43,14 @@ struct CandidateResult {
   bool valid = false;
 };
 
-// The candidates for an interval whose deepest pixel has `interval_top` fragments.
-std::vector<ResolveSort> bma_auto_candidates(unsigned interval_top);
+// The candidates for an interval whose deepest pixel has `interval_top` fragments: IS, and IS with
+// the order check; IMS (with and without it) above 32; RBS-L with each block sort (RS and the two
+// register networks).
+std::vector<SortChoice> bma_auto_candidates(unsigned interval_top);
 
 struct BmaAutoChoice {
-  std::vector<std::optional<ResolveSort>> sort;  // per interval; empty where the interval has no pixels
-  std::string source;                            // calibrated | cached | mixed
+  std::vector<std::optional<SortChoice>> sort;  // per interval; empty where the interval has no pixels
+  std::string source;                           // calibrated | cached | mixed
   std::string timings;  // "16/reverse:IS=3.1,RBS-L=2.2 ..." (median ms) for the calibrated intervals
 };
 
@@ -64,7 +66,7 @@ std::vector<std::string> interval_orders(const HostLists& lists, const ListStats
 BmaAutoChoice choose_interval_sorts(const std::vector<unsigned>& interval_tops, const std::vector<unsigned>& pixels,
                                     const std::vector<std::string>& orders, const GlInfo& gl, unsigned block,
                                     SortChoiceCache& cache, bool use_cache,
-                                    const std::function<CandidateResult(size_t, ResolveSort)>& measure);
+                                    const std::function<CandidateResult(size_t, const SortChoice&)>& measure);
 
 // "8:IS 16:IS 32:RBS-L" for the metric column.
 std::string describe_choice(const std::vector<unsigned>& interval_tops, const BmaAutoChoice& choice);

@@ -72,6 +72,8 @@ class ExactCase final : public OitCase {
         auto_(technique_ == "BMA-AUTO"),
         use_auto_cache_(p.get("bma_auto_cache") == "on"),
         block_(static_cast<int>(p.get_int("block"))),
+        block_sort_(parse_block_sort(p.has("block_sort") ? p.get("block_sort") : "insertion")),
+        order_check_(p.has("order_check") && p.get("order_check") == "on"),
         format_(parse_frag_format(p.get("frag_colour"), p.get("frag_depth"))),
         tolerance_(tolerance_of(format_.colour)),
         passes_(p, ctx),
@@ -90,10 +92,7 @@ class ExactCase final : public OitCase {
     long long init = p.get_int("initial_pool");
     lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx,
                                    init > 0 ? static_cast<size_t>(init) : pixels * 4, bma_, format_);
-    capture_ = build_capture_programs(
-        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
-        passes_.geometry_defines());
-    set_view_projection(view_proj_);
+    build_capture();
 
     // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
     // (the next power of two at or above it, as the paper does) before anything is compiled.
@@ -106,9 +105,9 @@ class ExactCase final : public OitCase {
     if (native_) return;
     if (compute_) {
       auto [gx, gy] = parse_group(p.get("cs_group"));
-      note_sort(sort_of_technique(technique_), max_frags_);
-      compute_resolve_ = std::make_unique<ComputeResolve>(
-          ctx, resolve_defines(sort_of_technique(technique_), max_frags_), passes_.scene().background, gx, gy);
+      note_sort(technique_choice(), max_frags_);
+      compute_resolve_ = std::make_unique<ComputeResolve>(ctx, resolve_defines(technique_choice(), max_frags_),
+                                                          passes_.scene().background, gx, gy);
       return;
     }
     if (bma_) {
@@ -127,8 +126,8 @@ class ExactCase final : public OitCase {
       for (size_t i = 0; i < used.size(); ++i)
         if (used[i]) interval_program(i);
     } else {
-      base_ = build_resolve(sort_of_technique(technique_), max_frags_);
-      note_sort(sort_of_technique(technique_), max_frags_);
+      base_ = build_resolve(technique_choice(), max_frags_);
+      note_sort(technique_choice(), max_frags_);
     }
   }
 
@@ -419,6 +418,14 @@ class ExactCase final : public OitCase {
 
   // The technique's capture: with the opaque effect, against the opaque depth (early fragment
   // tests in capture.frag: a hidden fragment is never stored).
+  void build_capture() {
+    capture_defines_ = lists_->defines();
+    capture_ = build_capture_programs(
+        *lists_, ctx_, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+        passes_.geometry_defines());
+    set_view_projection(view_proj_);
+  }
+
   int capture(bool depth_test = true) {
     target_.bind();
     if (depth_test)
@@ -429,6 +436,14 @@ class ExactCase final : public OitCase {
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     for (const auto& prog : capture_) passes_.bind_geometry(prog.get());
     int r = lists_->capture(ids(capture_), [&] { passes_.transparent().draw(); });
+    if (lists_->defines() != capture_defines_) {
+      // The pool grew past a texel buffer's limit into more chunks than the capture programs were
+      // built for (fragment_storage.hpp): the fragments past them were not stored. Rebuild for the
+      // new layout and capture again (the first capture, in prepare, before any resolve is built).
+      build_capture();
+      for (const auto& prog : capture_) passes_.bind_geometry(prog.get());
+      r += 1 + lists_->capture(ids(capture_), [&] { passes_.transparent().draw(); });
+    }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     passes_.end_geometry();
     return r;
@@ -460,14 +475,20 @@ class ExactCase final : public OitCase {
   }
 
   // The sort's defines plus the storage layout's.
-  Defines resolve_defines(ResolveSort sort, unsigned max_frags) const {
-    Defines d = sort_defines(sort, max_frags, static_cast<unsigned>(block_));
+  // The technique's sort with its parameters (block_sort, order_check).
+  SortChoice technique_choice() const { return {sort_of_technique(technique_), block_sort_, order_check_}; }
+
+  // The sort's defines plus the storage layout's. A network block sort compares the fragment as one
+  // 64-bit key where it packs into one (rgba8) and the driver has int64.
+  Defines resolve_defines(const SortChoice& sort, unsigned max_frags) const {
+    bool packed = format_.colour == FragColour::RGBA8 && ctx_.gl().has_extension("GL_ARB_gpu_shader_int64");
+    Defines d = sort_defines(sort, max_frags, static_cast<unsigned>(block_), packed);
     for (auto& x : lists_->defines()) d.push_back(x);
     for (auto& x : passes_.defines()) d.push_back(x);
     return d;
   }
 
-  gl::Program build_resolve(ResolveSort sort, unsigned max_frags) {
+  gl::Program build_resolve(const SortChoice& sort, unsigned max_frags) {
     Defines d = resolve_defines(sort, max_frags);
     auto prog = ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}}, d);
     glProgramUniform1i(prog.get(), glGetUniformLocation(prog.get(), "zero"), 0);
@@ -484,16 +505,16 @@ class ExactCase final : public OitCase {
 
   // Records the library files a resolve program built with these settings runs (sort_source),
   // hashed as read now, each once, in the order first used.
-  void note_sort(ResolveSort sort, unsigned max_frags) {
-    for (const auto& file : sort_files(sort, max_frags)) {
+  void note_sort(const SortChoice& sort, unsigned max_frags) {
+    for (const auto& file : sort_files(sort.sort, max_frags, sort.block)) {
       std::string id = ctx_.shaders().source_id(file);
       if (std::find(sort_sources_.begin(), sort_sources_.end(), id) == sort_sources_.end()) sort_sources_.push_back(id);
     }
   }
 
-  ResolveSort interval_sort(size_t i) const {
-    if (auto_) return i < auto_choice_.sort.size() && auto_choice_.sort[i] ? *auto_choice_.sort[i] : ResolveSort::IS;
-    return sort_of_technique(technique_);
+  SortChoice interval_sort(size_t i) const {
+    if (auto_) return i < auto_choice_.sort.size() && auto_choice_.sort[i] ? *auto_choice_.sort[i] : SortChoice{};
+    return technique_choice();
   }
 
   // BMA-AUTO (oit/bma_auto.hpp): each used interval's sort, from the cache or timed here on the
@@ -511,7 +532,7 @@ class ExactCase final : public OitCase {
     // hundred microseconds would otherwise be decided by launch overhead.
     constexpr int kReps = 5;
     gl::Query query = gl::make_query(GL_TIME_ELAPSED);
-    auto measure = [&](size_t i, ResolveSort sort) {
+    auto measure = [&](size_t i, const SortChoice& sort) {
       gl::Program prog = build_resolve(sort, interval_tops_[i]);
       mask_intervals(pixels);
       std::vector<double> ms;
@@ -565,6 +586,8 @@ class ExactCase final : public OitCase {
   std::string technique_;
   bool bma_, native_, compute_, auto_, use_auto_cache_;
   int block_;
+  BlockSort block_sort_;
+  bool order_check_;
   FragFormat format_;
   double tolerance_;
   ScenePasses passes_;
@@ -577,6 +600,7 @@ class ExactCase final : public OitCase {
   glm::mat4 view_proj_;
   std::unique_ptr<FragmentStorage> lists_;
   std::vector<gl::Program> capture_;  // one program per capture pass of the storage
+  Defines capture_defines_;           // the storage's defines they were built with
   gl::Program base_, count_, mask_;
   gl::Buffer histogram_;
   std::vector<unsigned> interval_tops_, interval_pixels_;

@@ -25,15 +25,23 @@ FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool wi
 }
 
 void FragmentLists::allocate(size_t pool) {
-  nodes_ = NodePool(pool, format_.colour, "linked-list node pool");
-  next_ = make_texel_buffer(pool, GL_R32UI, 4, "linked-list node pool");
+  // Never fewer chunks than the programs were built for (defines()); more only past the last one.
+  size_t chunks = std::max(nodes_.chunks(), chunks_for(pool));
+  nodes_ = NodePool(pool, format_.colour, "linked-list node pool", chunks);
+  next_ = ChunkedTexels(pool, GL_R32UI, 4, "linked-list node pool", chunks);
   pool_ = pool;
+}
+
+Defines FragmentLists::defines() const {
+  Defines d = frag_format_defines(format_);
+  for (auto& x : chunk_defines(nodes_.chunks(), nodes_.shift())) d.push_back(x);
+  return d;
 }
 
 void FragmentLists::bind() const {
   glBindImageTexture(kHeadsUnit, heads_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   nodes_.bind();
-  glBindImageTexture(kNextUnit, next_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  next_.bind(kNextUnit, ChunkSlot::Next);
   if (with_counts_) glBindImageTexture(kCountsUnit, counts_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, kCounterBinding, counter_.get());
 }
@@ -69,11 +77,12 @@ int FragmentLists::capture(const std::vector<GLuint>& programs, const std::funct
     glGetNamedBufferSubData(counter_.get(), 0, sizeof(unsigned), &count);  // waits for the capture
     fragments_ = count;
     if (count <= pool_) {
-      // Steady state: keep the pool within 1.25x of what the frame needed (sized from this count).
-      if (pool_ > count + count / 4 && count > 0) shrink_to_ = count + count / 8;
+      // Steady state: keep the pool within 1.1x of what the frame needed (sized from this count).
+      if (pool_ > count + count / 10 && count > 0) shrink_to_ = count + count / 32;
       break;
     }
-    // Overflowed: nodes past the pool were not written (nor linked); render the frame again.
+    // Overflowed: nodes past the pool were not written (nor linked); render the frame again, with
+    // 1/8 to spare (the next frame brings it back within 1.1x).
     ++rerenders;
     allocate(count + count / 8 + 1);
   }
@@ -97,7 +106,7 @@ HostLists FragmentLists::read_back() const {
   size_t n = std::min(fragments_, pool_);
   nodes_.read(n, h);
   h.next.resize(n);
-  if (n) glGetNamedBufferSubData(next_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 4), h.next.data());
+  next_.read(n, h.next.data());
   return h;
 }
 

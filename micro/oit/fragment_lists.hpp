@@ -13,7 +13,7 @@ class FragmentLists final : public FragmentStorage {
   FragmentLists(int width, int height, size_t initial_pool, bool with_counts, FragFormat format = {});
 
   CaptureStorage kind() const override { return CaptureStorage::PPLL; }
-  Defines defines() const override { return frag_format_defines(format_); }
+  Defines defines() const override;  // the format's, and the chunks' past one chunk
   std::vector<Defines> capture_passes() const override;
   // Clears the heads (and counts), binds everything, calls `draw` with programs[0] current, and
   // re-renders with a bigger pool while the counter passed the pool.
@@ -34,7 +34,7 @@ class FragmentLists final : public FragmentStorage {
   size_t shrink_to_ = 0;  // pool for the next frame when this one needed much less
   gl::Texture heads_, counts_;
   NodePool nodes_;
-  TexelBuffer next_;
+  ChunkedTexels next_;
   gl::Buffer counter_;
 };
 

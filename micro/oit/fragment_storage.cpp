@@ -1,5 +1,6 @@
 #include "oit/fragment_storage.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <stdexcept>
 
@@ -77,21 +78,19 @@ std::array<unsigned, 4> node_tie_key(const HostLists& h, size_t n) {
   return {w.w, w.z, w.y, w.x};
 }
 
-NodePool::NodePool(size_t pool, FragColour colour, const std::string& what) : colour_(colour) {
+NodePool::NodePool(size_t pool, FragColour colour, const std::string& what, size_t min_chunks) : colour_(colour) {
   if (colour == FragColour::RGBA8) {
-    colours_ = make_texel_buffer(pool, GL_RG32UI, 8, what);
+    colours_ = ChunkedTexels(pool, GL_RG32UI, 8, what, min_chunks);
     return;
   }
-  colours_ = colour == FragColour::RGBA16F ? make_texel_buffer(pool, GL_RG32UI, 8, what)
-                                           : make_texel_buffer(pool, GL_RGBA32UI, 16, what);
-  depths_ = make_texel_buffer(pool, GL_R32UI, 4, what);
+  colours_ = colour == FragColour::RGBA16F ? ChunkedTexels(pool, GL_RG32UI, 8, what, min_chunks)
+                                           : ChunkedTexels(pool, GL_RGBA32UI, 16, what, min_chunks);
+  depths_ = ChunkedTexels(pool, GL_R32UI, 4, what, min_chunks);
 }
 
 void NodePool::bind() const {
-  GLenum f = colour_ == FragColour::RGBA32F ? GL_RGBA32UI : GL_RG32UI;
-  glBindImageTexture(kNodesUnit, colours_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, f);
-  if (colour_ != FragColour::RGBA8)
-    glBindImageTexture(kNodeDepthUnit, depths_.view.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  colours_.bind(kNodesUnit, ChunkSlot::Colours);
+  if (colour_ != FragColour::RGBA8) depths_.bind(kNodeDepthUnit, ChunkSlot::Depths);
 }
 
 void NodePool::read(size_t n, HostLists& h) const {
@@ -99,32 +98,76 @@ void NodePool::read(size_t n, HostLists& h) const {
   h.nodes.assign(n, glm::uvec2(0));
   if (!n) return;
   if (colour_ == FragColour::RGBA8) {
-    glGetNamedBufferSubData(colours_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 8), h.nodes.data());
+    colours_.read(n, h.nodes.data());
     return;
   }
   std::vector<unsigned> depth(n);
-  glGetNamedBufferSubData(depths_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 4), depth.data());
+  depths_.read(n, depth.data());
   h.wide.assign(n, glm::uvec4(0));
   if (colour_ == FragColour::RGBA32F) {
-    glGetNamedBufferSubData(colours_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 16), h.wide.data());
+    colours_.read(n, h.wide.data());
   } else {
     std::vector<glm::uvec2> c(n);
-    glGetNamedBufferSubData(colours_.buffer.get(), 0, static_cast<GLsizeiptr>(n * 8), c.data());
+    colours_.read(n, c.data());
     for (size_t i = 0; i < n; ++i) h.wide[i] = glm::uvec4(c[i], 0u, 0u);
   }
   for (size_t i = 0; i < n; ++i) h.nodes[i].y = depth[i];
 }
 
-TexelBuffer make_texel_buffer(size_t texels, GLenum format, size_t texel_bytes, const std::string& what) {
+size_t max_chunk_texels() {
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  if (texels > static_cast<size_t>(max_texels))
-    throw Unsupported(what + " of " + std::to_string(texels) + " fragments exceeds GL_MAX_TEXTURE_BUFFER_SIZE (" +
-                      std::to_string(max_texels) + " texels)");
-  TexelBuffer b{gl::make_buffer(), gl::make_texture(GL_TEXTURE_BUFFER)};
-  glNamedBufferStorage(b.buffer.get(), static_cast<GLsizeiptr>(texels * texel_bytes), nullptr, 0);
-  glTextureBuffer(b.view.get(), format, b.buffer.get());
-  return b;
+  return std::bit_floor(static_cast<size_t>(std::max(max_texels, 1)));
+}
+
+size_t chunks_for(size_t texels) {
+  size_t chunk = max_chunk_texels();
+  return std::max<size_t>(1, (texels + chunk - 1) / chunk);
+}
+
+GLuint chunk_unit(GLuint first_unit, ChunkSlot slot, size_t chunk) {
+  if (chunk == 0) return first_unit;
+  return 8 + static_cast<GLuint>((chunk - 1) * 3) + static_cast<GLuint>(slot);
+}
+
+Defines chunk_defines(size_t chunks, unsigned shift) {
+  if (chunks <= 1) return {};
+  return {{"FRAG_CHUNKS", std::to_string(chunks)}, {"FRAG_CHUNK_SHIFT", std::to_string(shift)}};
+}
+
+ChunkedTexels::ChunkedTexels(size_t texels, GLenum format, size_t texel_bytes, const std::string& what,
+                             size_t min_chunks)
+    : format_(format), texel_bytes_(texel_bytes) {
+  const size_t chunk = max_chunk_texels();
+  shift_ = static_cast<unsigned>(std::countr_zero(chunk));
+  const size_t chunks = std::max(chunks_for(texels), min_chunks);
+  if (chunks > kMaxChunks)
+    throw Unsupported(what + " of " + std::to_string(texels) + " fragments needs " + std::to_string(chunks) +
+                      " texel buffers of GL_MAX_TEXTURE_BUFFER_SIZE (" + std::to_string(chunk) +
+                      " texels); the storage binds at most " + std::to_string(kMaxChunks));
+  for (size_t c = 0; c < chunks; ++c) {
+    size_t first = c * chunk;
+    size_t n = first < texels ? std::min(chunk, texels - first) : 1;  // a chunk kept for min_chunks: one texel
+    buffers_.push_back(gl::make_buffer());
+    views_.push_back(gl::make_texture(GL_TEXTURE_BUFFER));
+    glNamedBufferStorage(buffers_.back().get(), static_cast<GLsizeiptr>(n * texel_bytes), nullptr, 0);
+    glTextureBuffer(views_.back().get(), format, buffers_.back().get());
+  }
+}
+
+void ChunkedTexels::bind(GLuint first_unit, ChunkSlot slot) const {
+  for (size_t c = 0; c < views_.size(); ++c)
+    glBindImageTexture(chunk_unit(first_unit, slot, c), views_[c].get(), 0, GL_FALSE, 0, GL_READ_WRITE, format_);
+}
+
+void ChunkedTexels::read(size_t n, void* out) const {
+  auto* dst = static_cast<char*>(out);
+  const size_t chunk = size_t{1} << shift_;
+  for (size_t c = 0; c < buffers_.size() && c * chunk < n; ++c) {
+    size_t count = std::min(chunk, n - c * chunk);
+    glGetNamedBufferSubData(buffers_[c].get(), 0, static_cast<GLsizeiptr>(count * texel_bytes_),
+                            dst + c * chunk * texel_bytes_);
+  }
 }
 
 std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,

@@ -60,30 +60,58 @@ struct HostLists {
   std::string error;             // what the layout's own read-back check found wrong, else empty
 };
 
-// A buffer of `texels` seen as an image buffer of `format` (`texel_bytes` each): the fragments of
-// both layouts, PPLL's next pointers. Throws Unsupported past GL_MAX_TEXTURE_BUFFER_SIZE, naming `what`.
-struct TexelBuffer {
-  gl::Buffer buffer;
-  gl::Texture view;
+// An array of `texels` seen as image buffers of `format` (`texel_bytes` each): the fragments of both
+// layouts, PPLL's next pointers. One texel buffer holds at most GL_MAX_TEXTURE_BUFFER_SIZE texels
+// (128 Mi on llvmpipe: 197 M fragments do not fit), so the array is split into chunks of the largest
+// power of two that fits, each its own buffer and image unit: chunk 0 on the layout's unit, chunk c
+// on chunk_unit(slot, c). Shaders select the chunk by the index's high bits (FRAG_CHUNKS,
+// FRAG_CHUNK_SHIFT, injected only past one chunk, so the common case compiles exactly as before).
+// `min_chunks` keeps at least that many (a pool that shrinks keeps the programs it was built for).
+// Throws Unsupported past kMaxChunks chunks, naming `what`.
+inline constexpr size_t kMaxChunks = 4;
+enum class ChunkSlot : GLuint { Colours = 0, Next = 1, Depths = 2 };
+GLuint chunk_unit(GLuint first_unit, ChunkSlot slot, size_t chunk);  // units 8.. hold chunks 1..
+size_t max_chunk_texels();                                           // the largest power of two that fits
+class ChunkedTexels {
+ public:
+  ChunkedTexels() = default;
+  ChunkedTexels(size_t texels, GLenum format, size_t texel_bytes, const std::string& what, size_t min_chunks = 1);
+  size_t chunks() const { return buffers_.size(); }
+  unsigned shift() const { return shift_; }
+  void bind(GLuint first_unit, ChunkSlot slot) const;
+  void read(size_t n, void* out) const;  // the first n texels, across chunks
+ private:
+  GLenum format_ = GL_R32UI;
+  size_t texel_bytes_ = 4;
+  unsigned shift_ = 0;
+  std::vector<gl::Buffer> buffers_;
+  std::vector<gl::Texture> views_;
 };
-TexelBuffer make_texel_buffer(size_t texels, GLenum format, size_t texel_bytes, const std::string& what);
 
 // A node's colour as stored (decoded exactly), and the words equal depths are ordered by: alpha,
 // blue, green, red of the stored colour, compared as uints (larger goes farther), as the shaders do.
 glm::dvec4 node_colour(const HostLists& h, size_t node);
 std::array<unsigned, 4> node_tie_key(const HostLists& h, size_t node);
 
-// Every node's colour and depth words in one or two texel buffers (image units 1 and 5), per format.
+// Every node's colour and depth words in one or two chunked texel arrays (image units 1 and 5, and
+// their chunks'), per format.
 class NodePool {
  public:
   NodePool() = default;
-  NodePool(size_t pool, FragColour colour, const std::string& what);
+  NodePool(size_t pool, FragColour colour, const std::string& what, size_t min_chunks = 1);
   void bind() const;
   void read(size_t n, HostLists& h) const;  // the first n nodes into h.nodes (and h.wide)
+  size_t chunks() const { return colours_.chunks(); }
+  unsigned shift() const { return colours_.shift(); }
+
  private:
   FragColour colour_ = FragColour::RGBA8;
-  TexelBuffer colours_, depths_;
+  ChunkedTexels colours_, depths_;
 };
+// FRAG_CHUNKS and FRAG_CHUNK_SHIFT for a pool of `chunks` chunks (nothing for one).
+Defines chunk_defines(size_t chunks, unsigned shift);
+// How many chunks a pool of `texels` needs.
+size_t chunks_for(size_t texels);
 
 enum class CaptureStorage { PPLL, PPPA };
 const std::vector<std::string>& capture_storage_names();        // "PPLL", "PPPA"

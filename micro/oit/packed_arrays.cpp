@@ -20,7 +20,8 @@ PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool, FragForm
 }
 
 void PackedArrays::allocate(size_t pool) {
-  nodes_ = NodePool(pool, format_.colour, "packed per-pixel arrays");
+  // Never fewer chunks than the programs were built for (defines()); more only past the last one.
+  nodes_ = NodePool(pool, format_.colour, "packed per-pixel arrays", std::max(nodes_.chunks(), chunks_for(pool)));
   pool_ = pool;
 }
 
@@ -48,9 +49,12 @@ int PackedArrays::capture(const std::vector<GLuint>& programs, const std::functi
   scan_.scan_counts(counts_.get(), offsets_.get());
   fragments_ = scan_.read_total();  // waits for the count pass and the scan
   last_count_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  // Sized before anything is stored, so nothing overflows; kept within 1.25x of what is needed.
-  if (fragments_ > pool_ || pool_ > fragments_ + fragments_ / 4)
+  // Sized before anything is stored, so nothing overflows: grown with 1/8 to spare, and brought
+  // back within 1.1x of what is needed once a frame needs less.
+  if (fragments_ > pool_)
     allocate(std::max<size_t>(fragments_ + fragments_ / 8, 1));
+  else if (pool_ > fragments_ + fragments_ / 10)
+    allocate(std::max<size_t>(fragments_ + fragments_ / 32, 1));
   bind();
   glUseProgram(programs.at(1));
   glUniform1ui(glGetUniformLocation(programs[1], "poolSize"), static_cast<GLuint>(pool_));

@@ -17,6 +17,7 @@ class PackedArrays final : public FragmentStorage {
   CaptureStorage kind() const override { return CaptureStorage::PPPA; }
   Defines defines() const override {
     Defines d = frag_format_defines(format_);
+    for (auto& x : chunk_defines(nodes_.chunks(), nodes_.shift())) d.push_back(x);
     d.push_back({"STORAGE_PPPA", ""});
     return d;
   }

@@ -33,6 +33,51 @@ ResolveSort parse_sort_label(const std::string& label) {
   throw std::invalid_argument("unknown resolve sort '" + label + "' (IS, IMS, RBS-L, RBS-G)");
 }
 
+const std::vector<std::string>& block_sort_names() {
+  static const std::vector<std::string> names = {"insertion", "bitonic", "odd-even-merge"};
+  return names;
+}
+
+BlockSort parse_block_sort(const std::string& name) {
+  if (name == "insertion") return BlockSort::Insertion;
+  if (name == "bitonic") return BlockSort::Bitonic;
+  if (name == "odd-even-merge") return BlockSort::OddEvenMerge;
+  throw std::invalid_argument("unknown block sort '" + name + "' (insertion, bitonic, odd-even-merge)");
+}
+
+std::string choice_label(const SortChoice& c) {
+  std::string s = sort_label(c.sort);
+  if (c.block != BlockSort::Insertion) s += "/" + block_sort_names()[static_cast<size_t>(c.block)];
+  if (c.order_check) s += "+order-check";
+  return s;
+}
+
+SortChoice parse_choice_label(const std::string& label) {
+  SortChoice c;
+  std::string rest = label;
+  if (rest.ends_with("+order-check")) {
+    c.order_check = true;
+    rest.resize(rest.size() - std::string("+order-check").size());
+  }
+  if (auto slash = rest.find('/'); slash != std::string::npos) {
+    c.block = parse_block_sort(rest.substr(slash + 1));
+    rest.resize(slash);
+  }
+  c.sort = parse_sort_label(rest);
+  return c;
+}
+
+Defines sort_defines(const SortChoice& c, unsigned max_frags, unsigned block, bool packed_key64) {
+  Defines d = sort_defines(c.sort, max_frags, block);
+  bool rbs = c.sort == ResolveSort::RBS_L || c.sort == ResolveSort::RBS_G;
+  if (rbs && c.block != BlockSort::Insertion) {
+    d.push_back({c.block == BlockSort::Bitonic ? "SORT_NETWORK_BITONIC" : "SORT_NETWORK_ODD_EVEN_MERGE", ""});
+    if (packed_key64) d.push_back({"SORT_PACKED_KEY64", ""});
+  }
+  if (!rbs && c.order_check) d.push_back({"SORT_ORDER_CHECK", ""});
+  return d;
+}
+
 Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block) {
   Defines d = {{"MAX_FRAGS", std::to_string(max_frags)}};
   if (sort == ResolveSort::IS) {
@@ -49,7 +94,7 @@ Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block) {
   return d;
 }
 
-std::vector<std::string> sort_files(ResolveSort sort, unsigned max_frags) {
+std::vector<std::string> sort_files(ResolveSort sort, unsigned max_frags, BlockSort block) {
   switch (sort) {
     case ResolveSort::IS:
       return {"sorts/insertion.glsl"};
@@ -58,6 +103,7 @@ std::vector<std::string> sort_files(ResolveSort sort, unsigned max_frags) {
       return {"sorts/insertion.glsl"};
     case ResolveSort::RBS_L:
     case ResolveSort::RBS_G:
+      if (block != BlockSort::Insertion) return {"sorts/network.glsl", "sorts/network_tables.glsl"};
       return {"sorts/register_sort.glsl"};
   }
   return {};

@@ -1,6 +1,7 @@
 // The register-based block sort of the oit resolves, RBS-L and RBS-G (Knowles 2014, listings 3-6),
 // composed from the library's RS network (shaders/sorts/register_sort.glsl, the same file the sort
-// experiment's `rbs` times) and this resolve's own parts, which stay here because they are
+// experiment's `rbs` times) or a register network (shaders/sorts/network.glsl, the sort
+// experiment's bitonic-network and odd-even-merge-network) and this resolve's own parts, which stay here because they are
 // written against the fragment storage API and blend while they merge, not against the sort
 // library's element API: load_block() reads up to RBS_M fragments of the list into `registers`,
 // the network sorts them there (this file binds the library's SORT_AT to `registers`), and the
@@ -20,20 +21,38 @@
 // FRAG_STORE).
 #pragma optionNV(unroll all)
 
-// The binding of the library's API for RS: the block in registers, every index a constant.
+// The binding of the library's API for the block sort: the block in registers, every index a constant.
 FRAG_T registers[RBS_M];
 #define SORT_N RBS_M
 #define SORT_SIZE RBS_M
 #define SORT_AT(i) registers[i]
 #include "../sorts/unroll.glsl"
-#include "../sorts/register_sort.glsl"
 
 #if !defined(SORT_EACH_INDEX)
 #error "RBS_M must be at most 32"
 #endif
 
-// Reads up to RBS_M fragments of the list from `node` into registers; returns how many.
-#define RBS_LOAD(i) if (FRAG_VALID(node)) { registers[i] = FRAG_LOAD(node); node = FRAG_NEXT(node); m = (i) + 1; }
+// The block sort (the block_sort parameter, micro/oit/resolve_sort.hpp):
+//   (default)                    RS (register_sort.glsl), shrunk to the block's m fragments
+//   SORT_NETWORK_BITONIC,        a branchless register network (network.glsl) of RBS_M elements;
+//   SORT_NETWORK_ODD_EVEN_MERGE  a block of m < RBS_M is padded with FRAG_ZERO (depth 0, colour 0:
+//                                the nearest possible fragment, so it sorts after every real one;
+//                                a real fragment equal to it is the same bits, so which of the two
+//                                lands in the first m slots changes nothing)
+#if defined(SORT_NETWORK_BITONIC) || defined(SORT_NETWORK_ODD_EVEN_MERGE)
+#define RBS_NETWORK
+#include "../sorts/network.glsl"
+#define RBS_SORT_BLOCK(m) sort_network()
+#define RBS_PAD(i) else registers[i] = FRAG_ZERO;
+#else
+#include "../sorts/register_sort.glsl"
+#define RBS_SORT_BLOCK(m) sort_register(m)
+#define RBS_PAD(i)
+#endif
+
+// Reads up to RBS_M fragments of the list from `node` into registers (a network's padding after
+// them); returns how many.
+#define RBS_LOAD(i) if (FRAG_VALID(node)) { registers[i] = FRAG_LOAD(node); node = FRAG_NEXT(node); m = (i) + 1; } RBS_PAD(i)
 int load_block(inout uint node) {
   int m = 0;
   SORT_EACH_INDEX(RBS_LOAD)
@@ -43,7 +62,7 @@ int load_block(inout uint node) {
 #if defined(SORT_RBS) && MAX_K == 1
 vec3 resolve_pixel(uint node) {
   int m = load_block(node);
-  sort_register(m);
+  RBS_SORT_BLOCK(m);
   vec3 c = backdrop;
 #define RBS_BLEND(i) if ((i) < m) c = blend_over(c, registers[i]);
   SORT_EACH_INDEX(RBS_BLEND)
@@ -56,7 +75,7 @@ vec3 resolve_pixel(uint node) {
   int n = 0, k = 0;
   while (FRAG_VALID(node) && k < MAX_K) {
     int m = load_block(node);
-    sort_register(m);
+    RBS_SORT_BLOCK(m);
 #define RBS_STORE(i) if ((i) < m) frags[k * RBS_M + (i)] = registers[i];
     SORT_EACH_INDEX(RBS_STORE)
     n += m;
@@ -99,7 +118,7 @@ vec3 resolve_pixel(uint node) {
     uint start = node;
     uint dst = node;
     int m = load_block(node);
-    sort_register(m);
+    RBS_SORT_BLOCK(m);
     SORT_EACH_INDEX(RBS_WRITE_BACK)
     blockHead[k] = start;
     blockLeft[k] = m;

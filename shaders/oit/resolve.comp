@@ -3,6 +3,9 @@
 // the target image, alpha 1 for a resolved pixel (uncovered pixels keep the cleared 0 alpha).
 // Groups are CS_GROUP_X x CS_GROUP_Y pixels; the default is 8-wide rows (8x1): a stream-form
 // resolve was miscompiled here with 4x4 groups (PLATFORM.md). The sorts load, then sort.
+#if defined(SORT_PACKED_KEY64)
+#extension GL_ARB_gpu_shader_int64 : require
+#endif
 #include "../common/oitbench.glsl"
 #include "storage/fragments.glsl"
 

@@ -2,6 +2,9 @@
 // resolve_pixel.glsl, from the library in shaders/sorts/). Drawn as a full-screen triangle with
 // additive blending onto a cleared target: rgb is the composited colour, alpha counts how often
 // the pixel was resolved (BMA must resolve each covered pixel exactly once).
+#if defined(SORT_PACKED_KEY64)
+#extension GL_ARB_gpu_shader_int64 : require
+#endif
 #include "../common/oitbench.glsl"
 #include "storage/fragments.glsl"
 

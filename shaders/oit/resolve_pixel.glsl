@@ -2,6 +2,8 @@
 // (resolve.frag) and the compute one (resolve.comp): load the pixel's list, sort it far-to-near
 // with the sort the variant names, blend back to front with "over" onto `backdrop`. The sorts
 // are the library's (shaders/sorts/), the same files the sort experiment times:
+//   SORT_ORDER_CHECK (IS, IMS): a list already far-to-near is not sorted, one near-to-far is
+//               reversed in O(n) (the order_check parameter)
 //   SORT_IS:    insertion sort (sorts/insertion.glsl) in a local array of MAX_FRAGS
 //               (BASE-IS, BMA-IS, CS-IS)
 //   SORT_IMS:   insertion up to 32 fragments, merge sort above (sorts/merge.glsl, its
@@ -29,6 +31,13 @@ vec3 blend_over(vec3 c, FRAG_T frag) {
 #include "../sorts/api.glsl"
 #define SORT_T FRAG_T
 #define SORT_GT(a, b) FRAG_FARTHER(b, a)
+// SORT_PACKED_KEY64 (the register networks, rgba8 fragments, a driver with int64; the entry points
+// enable GL_ARB_gpu_shader_int64): uvec2(colour, depth bits) read as one 64-bit key, depth high and
+// colour low, orders exactly as FRAG_FARTHER does, so far-to-near is max first.
+#if defined(SORT_PACKED_KEY64) && !defined(FRAG_COLOUR_RGBA16F) && !defined(FRAG_COLOUR_RGBA32F)
+#define SORT_FIRST(a, b) unpackUint2x32(max(packUint2x32(a), packUint2x32(b)))
+#define SORT_LAST(a, b) unpackUint2x32(min(packUint2x32(a), packUint2x32(b)))
+#endif
 
 #if defined(SORT_RBS) || defined(SORT_RBS_G)
 #include "rbs.glsl"
@@ -47,11 +56,29 @@ int frag_count;  // the pixel's fragments: a run-time loop bound, so the sorts w
 #endif
 vec3 resolve_pixel(uint node) {
   int n = 0;
+#if defined(SORT_ORDER_CHECK)
+  // The list's order, checked while loading in O(n): `ordered` while no pair is out of far-to-near
+  // order, `reversed` while no pair is out of near-to-far order.
+  bool ordered = true, reversed = true;
+#endif
   while (FRAG_VALID(node) && n < MAX_FRAGS) {  // deeper pixels are truncated (counted on the host)
-    frags[n++] = FRAG_LOAD(node);
+    frags[n] = FRAG_LOAD(node);
+#if defined(SORT_ORDER_CHECK)
+    if (n > 0) {
+      ordered = ordered && !SORT_GT(frags[n - 1], frags[n]);
+      reversed = reversed && !SORT_GT(frags[n], frags[n - 1]);
+    }
+#endif
+    ++n;
     node = FRAG_NEXT(node);
   }
   frag_count = n;
+#if defined(SORT_ORDER_CHECK)
+  if (reversed && !ordered) {
+    // Near-to-far: reversed in place it is far-to-near (equal neighbours are equal bits).
+    for (int i = 0, j = n - 1; i < j; ++i, --j) SORT_SWAP(i, j);
+  } else if (!ordered)
+#endif
 #if defined(SORT_IMS) && MAX_FRAGS > 32
   if (n > 32) sort_merge();
   else

@@ -35,6 +35,12 @@
 #include "../sorts/odd_even_merge.glsl"
 #define SORT_ALGORITHM() sort_odd_even_merge()
 #endif
+#if defined(SORT_USE_NETWORK)
+// The register networks (SORT_NETWORK_BITONIC or SORT_NETWORK_ODD_EVEN_MERGE): SORT_N elements,
+// compare-exchanges as min/max of the packed key (frags.glsl, SORT_PACKED_KEY64) or selects.
+#include "../sorts/network.glsl"
+#define SORT_ALGORITHM() sort_network()
+#endif
 #if defined(SORT_USE_REGISTER_SORT)
 // RS shrinks its network to the `count` uniform (== SORT_N), as a resolve does to a block's fragments.
 #include "../sorts/register_sort.glsl"

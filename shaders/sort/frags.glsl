@@ -13,6 +13,9 @@
 //   MEMORY_LOCAL      SORT_SIZE is the uniform `count` (== SORT_N, unknown to the compiler): loops
 //                     stay loops, indices stay dynamic and `frags` must live in indexable local memory
 //                     (Listing 2, left) - the way a resolve with a per-pixel fragment count is written
+//   SORT_PACKED_KEY64 (the register networks, where GL_ARB_gpu_shader_int64 exists: the entry points
+//                     enable it) a fragment read as one 64-bit key, depth key high and payload low,
+//                     so the network's compare-exchange is a min and a max (SORT_FIRST, SORT_LAST)
 #ifndef SORT_FRAGS_GLSL
 #define SORT_FRAGS_GLSL
 
@@ -37,6 +40,13 @@ SORT_T frags[SORT_N];
 #define SORT_AT(i) frags[i]
 #define SORT_KEY(v) uintBitsToFloat((v).x)
 #define SORT_GT(a, b) (SORT_KEY(a) > SORT_KEY(b))
+#if defined(SORT_PACKED_KEY64)
+// Keys are floats >= 0, so their bits order like them; the payload breaks ties (any order of equal
+// keys is a sorted order here).
+#define SORT_KEY64_(v) packUint2x32((v).yx)
+#define SORT_FIRST(a, b) unpackUint2x32(min(SORT_KEY64_(a), SORT_KEY64_(b))).yx
+#define SORT_LAST(a, b) unpackUint2x32(max(SORT_KEY64_(a), SORT_KEY64_(b))).yx
+#endif
 
 #if defined(MEMORY_REGISTERS)
 #define SORT_SIZE SORT_N

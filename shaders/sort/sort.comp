@@ -1,4 +1,7 @@
 // Sorting in a compute pass: one invocation per pixel, 8x8 pixel tiles.
+#if defined(SORT_PACKED_KEY64)
+#extension GL_ARB_gpu_shader_int64 : require
+#endif
 #include "sort_pixel.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -38,6 +38,52 @@ TEST_F(OitCompute, ComputeResolvesAndRbsGMatchTheCpuReference) {
     }
 }
 
+// The register networks as RBS's block sort: blocks of 8 (4 blocks and a merge on the 24 planes;
+// blocks padded where the hairball's pixels hold fewer), every RBS form.
+TEST_F(OitCompute, NetworkBlockSortsMatchTheCpuReference) {
+  for (const char* block_sort : {"bitonic", "odd-even-merge"})
+    for (const char* technique : {"BASE-RBS-L", "CS-RBS-L", "RBS-G"})
+      for (auto [scene, view] : {std::pair{"planes", "rev"}, {"hairball", "rev"}}) {
+        auto p = small(scene, view, technique);
+        p["block_sort"] = block_sort;
+        auto v = run_case("oit", p);
+        EXPECT_TRUE(v.valid) << technique << " " << block_sort << " " << scene << " " << view << ": " << v.reason;
+        EXPECT_NE(v.metrics.at("sort_source").find("sorts/network.glsl@"), std::string::npos);
+      }
+  // rgba16f does not pack into one 64-bit key: the select form of the compare-exchange.
+  auto p = small("hairball", "rev", "CS-RBS-L");
+  p["block_sort"] = "bitonic";
+  p["frag_colour"] = "rgba16f";
+  auto v = run_case("oit", p);
+  EXPECT_TRUE(v.valid) << "rgba16f: " << v.reason;
+}
+
+// The order check: sorted lists (fwd) skip the sort, reversed ones (rev) are reversed, mixed ones
+// (the hairball) are sorted; IS and IMS, fragment and compute resolves, PPLL and PPPA (whose lists
+// arrive in the opposite order).
+TEST_F(OitCompute, OrderCheckedResolvesMatchTheCpuReference) {
+  for (const char* technique : {"BASE-IS", "CS-IMS", "BMA-IS"})
+    for (const char* capture : {"PPLL", "PPPA"})
+      for (auto [scene, view] : {std::pair{"planes", "fwd"}, {"planes", "rev"}, {"hairball", "rev"}}) {
+        auto p = small(scene, view, technique);
+        p["order_check"] = "on";
+        p["capture"] = capture;
+        auto v = run_case("oit", p);
+        EXPECT_TRUE(v.valid) << technique << " " << capture << " " << scene << " " << view << ": " << v.reason;
+      }
+  for (const char* technique : {"BASE-IS", "CS-RBS-L"}) {
+    auto p = small("planes", "rev", technique);
+    if (std::string(technique) == "BASE-IS")
+      p["order_check"] = "on";
+    else
+      p["block_sort"] = "bitonic";
+    p["fault"] = "wrong-result";
+    auto v = run_case("oit", p);
+    EXPECT_FALSE(v.valid) << technique;
+    EXPECT_EQ(v.metrics.at("bad_pixels"), "64") << technique;  // the diagonal
+  }
+}
+
 TEST_F(OitCompute, ComputeGroupShapesAndDeepMergePaths) {
   // Load-then-sort is correct in every group shape (the stream form was not, with 4x4 groups).
   for (const char* group : {"8x8", "4x4"}) {

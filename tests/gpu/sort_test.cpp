@@ -48,6 +48,38 @@ TEST_F(Sort, RbsSixteen) {
   }
 }
 
+// The unrolled register networks (sorts/network.glsl): both compare-exchange forms, a power of two
+// and sizes that are not (comparators past the end dropped), every key distribution, both stages.
+TEST_F(Sort, RegisterNetworksSort) {
+  for (const char* variant : {"bitonic-network", "odd-even-merge-network"}) {
+    for (const char* compare : {"min-max", "select"})
+      for (const char* n : {"2", "13", "16"}) {
+        auto v = run_case(
+            "sort",
+            {{"variant", variant}, {"memory", "registers"}, {"n", n}, {"keys", "duplicates"}, {"compare", compare}},
+            kSmall);
+        EXPECT_TRUE(v.valid) << variant << " compare=" << compare << " n=" << n << ": " << v.reason;
+      }
+    for (const char* keys : {"sorted", "reverse", "few-distinct"}) {
+      auto v = run_case("sort", {{"variant", variant}, {"memory", "registers"}, {"n", "8"}, {"keys", keys}}, kSmall);
+      EXPECT_TRUE(v.valid) << variant << " keys=" << keys << ": " << v.reason;
+    }
+    auto v =
+        run_case("sort", {{"variant", variant}, {"memory", "registers"}, {"n", "32"}, {"stage", "compute"}}, kSmall);
+    EXPECT_TRUE(v.valid) << variant << " n=32 compute: " << v.reason;
+  }
+}
+
+TEST_F(Sort, ValidatorCatchesABrokenNetwork) {
+  for (const char* variant : {"bitonic-network", "odd-even-merge-network"}) {
+    auto v = run_case("sort", {{"variant", variant}, {"memory", "registers"}, {"n", "8"}, {"fault", "wrong-result"}},
+                      kSmall);
+    EXPECT_FALSE(v.valid) << variant;
+    EXPECT_EQ(v.metrics.at("unsorted_pixels"), "1") << variant << ": " << v.reason;
+    EXPECT_EQ(v.metrics.at("changed_pixels"), "1") << variant << ": " << v.reason;
+  }
+}
+
 TEST_F(Sort, KeyDistributionsAndTheComputeStage) {
   for (const char* keys : {"sorted", "reverse", "duplicates", "few-distinct"})
     for (const char* stage : {"fragment", "compute"}) {

@@ -73,7 +73,7 @@ TEST_F(SortLibrary, EverySortFunctionIsDefinedInExactlyOneFileUnderSorts) {
   auto where = definitions(sources, std::regex(R"(\bvoid\s+(sort_\w+)\s*\()"));
   // The library's sorts, as shaders/sorts/api.glsl lists them: all present.
   for (const char* name : {"sort_insertion", "sort_bubble", "sort_shell", "sort_merge", "sort_bitonic",
-                           "sort_odd_even_merge", "sort_register"})
+                           "sort_odd_even_merge", "sort_register", "sort_network"})
     EXPECT_TRUE(where.count(name)) << name << " is not defined anywhere under " << root;
   for (const auto& [name, files] : where) {
     EXPECT_EQ(files.size(), 1u) << name << " is defined in " << files.size() << " files, first " << *files.begin()

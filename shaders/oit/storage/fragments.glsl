@@ -14,8 +14,8 @@
 //   FRAG_SCREEN_SIZE() the size of the captured image in pixels
 //   store_fragment(p, rgba, depth)   (capture shaders only: STORAGE_CAPTURE)
 // Depths are >= 0 (window or view depth), so comparing their bits as uints orders them like the floats.
-// Both layouts keep the fragments in the same texel buffer (binding 1), so they differ only in how
-// a pixel finds its fragments.
+// Both layouts keep the fragments in the same texel buffer (binding 1, and its chunks past one
+// buffer's limit), so they differ only in how a pixel finds its fragments.
 #ifndef OIT_STORAGE_FRAGMENTS
 #define OIT_STORAGE_FRAGMENTS
 
@@ -29,6 +29,126 @@
 //   FRAG_DEPTH_BITS(f)   the sort key: the depth's float bits (>= 0, so they compare as uints)
 //   frag_colour(f)       the stored colour as vec4
 //   frag_colour_greater(a, b)  equal depths' order: alpha, blue, green, red of the stored colour
+// Past GL_MAX_TEXTURE_BUFFER_SIZE texels the node arrays are split into FRAG_CHUNKS texel buffers
+// (micro/oit/fragment_storage.hpp, at most 4) of 2^FRAG_CHUNK_SHIFT texels: node i lives in chunk
+// i >> FRAG_CHUNK_SHIFT at offset i & (2^FRAG_CHUNK_SHIFT - 1). Chunk 0 keeps the layout's unit
+// (1, 2, 5); chunk c > 0 is on unit 8 + 3 (c - 1) + (0 colours, 1 next pointers, 2 depths). Without
+// FRAG_CHUNKS (one chunk) every access is the plain imageLoad/imageStore of before.
+#ifndef FRAG_CHUNKS
+#define FRAG_CHUNKS 1
+#endif
+#if FRAG_CHUNKS > 4
+#error "the fragment storage binds at most 4 chunks"
+#endif
+#if FRAG_CHUNKS > 1
+#define FRAG_CHUNK_OF(node) ((node) >> FRAG_CHUNK_SHIFT)
+#define FRAG_OFFSET_OF(node) int((node) & ((1u << FRAG_CHUNK_SHIFT) - 1u))
+// FRAG_CHUNKED_LOAD(result, name0, name1, name2, name3, node): result = imageLoad of the node's chunk.
+#define FRAG_CHUNKED_LOAD(r, a0, a1, a2, a3, node)      \
+  {                                                     \
+    uint c_ = FRAG_CHUNK_OF(node);                      \
+    int o_ = FRAG_OFFSET_OF(node);                      \
+    if (c_ == 0u) r = imageLoad(a0, o_);                \
+    else if (c_ == 1u || FRAG_CHUNKS == 2) r = imageLoad(a1, o_); \
+    else FRAG_CHUNKED_LOAD_HIGH_(r, a2, a3, c_, o_)     \
+  }
+#define FRAG_CHUNKED_STORE(a0, a1, a2, a3, node, v)     \
+  {                                                     \
+    uint c_ = FRAG_CHUNK_OF(node);                      \
+    int o_ = FRAG_OFFSET_OF(node);                      \
+    if (c_ == 0u) imageStore(a0, o_, v);                \
+    else if (c_ == 1u || FRAG_CHUNKS == 2) imageStore(a1, o_, v); \
+    else FRAG_CHUNKED_STORE_HIGH_(a2, a3, c_, o_, v)    \
+  }
+#if FRAG_CHUNKS == 2
+#define FRAG_CHUNKED_LOAD_HIGH_(r, a2, a3, c, o) {}
+#define FRAG_CHUNKED_STORE_HIGH_(a2, a3, c, o, v) {}
+#elif FRAG_CHUNKS == 3
+#define FRAG_CHUNKED_LOAD_HIGH_(r, a2, a3, c, o) r = imageLoad(a2, o);
+#define FRAG_CHUNKED_STORE_HIGH_(a2, a3, c, o, v) imageStore(a2, o, v);
+#else
+#define FRAG_CHUNKED_LOAD_HIGH_(r, a2, a3, c, o) \
+  if (c == 2u) r = imageLoad(a2, o);              \
+  else r = imageLoad(a3, o);
+#define FRAG_CHUNKED_STORE_HIGH_(a2, a3, c, o, v) \
+  if (c == 2u) imageStore(a2, o, v);               \
+  else imageStore(a3, o, v);
+#endif
+#endif
+// FRAG_DECLARE_CHUNK_(slot, format, name, chunk): the image of chunk `chunk` > 0 of one array.
+#define FRAG_DECLARE_CHUNK_(slot, format, name, chunk) layout(binding = 8 + 3 * (chunk - 1) + slot, format) uniform uimageBuffer name;
+
+#if defined(FRAG_COLOUR_RGBA32F)
+#define FRAG_DATA_FORMAT rgba32ui
+#else
+#define FRAG_DATA_FORMAT rg32ui
+#endif
+layout(binding = 1, FRAG_DATA_FORMAT) uniform uimageBuffer nodeData;
+#if defined(FRAG_COLOUR_RGBA32F) || defined(FRAG_COLOUR_RGBA16F)
+#define FRAG_WIDE
+layout(binding = 5, r32ui) uniform uimageBuffer nodeDepth;
+#endif
+#if FRAG_CHUNKS > 1
+FRAG_DECLARE_CHUNK_(0, FRAG_DATA_FORMAT, nodeData_1, 1)
+#if defined(FRAG_WIDE)
+FRAG_DECLARE_CHUNK_(2, r32ui, nodeDepth_1, 1)
+#endif
+#endif
+#if FRAG_CHUNKS > 2
+FRAG_DECLARE_CHUNK_(0, FRAG_DATA_FORMAT, nodeData_2, 2)
+#if defined(FRAG_WIDE)
+FRAG_DECLARE_CHUNK_(2, r32ui, nodeDepth_2, 2)
+#endif
+#else
+#define nodeData_2 nodeData_1
+#define nodeDepth_2 nodeDepth_1
+#endif
+#if FRAG_CHUNKS > 3
+FRAG_DECLARE_CHUNK_(0, FRAG_DATA_FORMAT, nodeData_3, 3)
+#if defined(FRAG_WIDE)
+FRAG_DECLARE_CHUNK_(2, r32ui, nodeDepth_3, 3)
+#endif
+#else
+#define nodeData_3 nodeData_2
+#define nodeDepth_3 nodeDepth_2
+#endif
+
+// The node's words as stored (colour words in .rg or .rgba; depth words apart for wide formats).
+uvec4 frag_data_load(uint node) {
+#if FRAG_CHUNKS > 1
+  uvec4 r;
+  FRAG_CHUNKED_LOAD(r, nodeData, nodeData_1, nodeData_2, nodeData_3, node)
+  return r;
+#else
+  return imageLoad(nodeData, int(node));
+#endif
+}
+void frag_data_store(uint node, uvec4 v) {
+#if FRAG_CHUNKS > 1
+  FRAG_CHUNKED_STORE(nodeData, nodeData_1, nodeData_2, nodeData_3, node, v)
+#else
+  imageStore(nodeData, int(node), v);
+#endif
+}
+#if defined(FRAG_WIDE)
+uint frag_depth_load(uint node) {
+#if FRAG_CHUNKS > 1
+  uvec4 r;
+  FRAG_CHUNKED_LOAD(r, nodeDepth, nodeDepth_1, nodeDepth_2, nodeDepth_3, node)
+  return r.r;
+#else
+  return imageLoad(nodeDepth, int(node)).r;
+#endif
+}
+void frag_depth_store(uint node, uint d) {
+#if FRAG_CHUNKS > 1
+  FRAG_CHUNKED_STORE(nodeDepth, nodeDepth_1, nodeDepth_2, nodeDepth_3, node, uvec4(d, 0u, 0u, 0u))
+#else
+  imageStore(nodeDepth, int(node), uvec4(d, 0u, 0u, 0u));
+#endif
+}
+#endif
+
 #if defined(FRAG_COLOUR_RGBA32F)
 struct FragRGBA32F {
   uvec4 colour;
@@ -36,12 +156,10 @@ struct FragRGBA32F {
 };
 #define FRAG_T FragRGBA32F
 #define FRAG_ZERO FragRGBA32F(uvec4(0u), 0u)
-layout(binding = 1, rgba32ui) uniform uimageBuffer nodeData;
-layout(binding = 5, r32ui) uniform uimageBuffer nodeDepth;
-FRAG_T frag_load(uint node) { return FRAG_T(imageLoad(nodeData, int(node)), imageLoad(nodeDepth, int(node)).r); }
+FRAG_T frag_load(uint node) { return FRAG_T(frag_data_load(node), frag_depth_load(node)); }
 void frag_store(uint node, FRAG_T f) {
-  imageStore(nodeData, int(node), f.colour);
-  imageStore(nodeDepth, int(node), uvec4(f.depth, 0u, 0u, 0u));
+  frag_data_store(node, f.colour);
+  frag_depth_store(node, f.depth);
 }
 FRAG_T frag_pack(vec4 rgba, float depth) { return FRAG_T(floatBitsToUint(rgba), floatBitsToUint(depth)); }
 vec4 frag_colour(FRAG_T f) { return uintBitsToFloat(f.colour); }
@@ -55,15 +173,13 @@ bool frag_colour_greater(FRAG_T a, FRAG_T b) {
 #elif defined(FRAG_COLOUR_RGBA16F)
 #define FRAG_T uvec3
 #define FRAG_ZERO uvec3(0u)
-layout(binding = 1, rg32ui) uniform uimageBuffer nodeData;
-layout(binding = 5, r32ui) uniform uimageBuffer nodeDepth;
 FRAG_T frag_load(uint node) {
-  uvec2 c = imageLoad(nodeData, int(node)).rg;
-  return uvec3(c.x, imageLoad(nodeDepth, int(node)).r, c.y);
+  uvec2 c = frag_data_load(node).rg;
+  return uvec3(c.x, frag_depth_load(node), c.y);
 }
 void frag_store(uint node, FRAG_T f) {
-  imageStore(nodeData, int(node), uvec4(f.x, f.z, 0u, 0u));
-  imageStore(nodeDepth, int(node), uvec4(f.y, 0u, 0u, 0u));
+  frag_data_store(node, uvec4(f.x, f.z, 0u, 0u));
+  frag_depth_store(node, f.y);
 }
 FRAG_T frag_pack(vec4 rgba, float depth) {
   return uvec3(packHalf2x16(rgba.rg), floatBitsToUint(depth), packHalf2x16(rgba.ba));
@@ -74,9 +190,8 @@ bool frag_colour_greater(FRAG_T a, FRAG_T b) { return a.z > b.z || (a.z == b.z &
 #else
 #define FRAG_T uvec2
 #define FRAG_ZERO uvec2(0u)
-layout(binding = 1, rg32ui) uniform uimageBuffer nodeData;
-FRAG_T frag_load(uint node) { return imageLoad(nodeData, int(node)).rg; }
-void frag_store(uint node, FRAG_T f) { imageStore(nodeData, int(node), uvec4(f, 0u, 0u)); }
+FRAG_T frag_load(uint node) { return frag_data_load(node).rg; }
+void frag_store(uint node, FRAG_T f) { frag_data_store(node, uvec4(f, 0u, 0u)); }
 FRAG_T frag_pack(vec4 rgba, float depth) { return uvec2(packUnorm4x8(rgba), floatBitsToUint(depth)); }
 vec4 frag_colour(FRAG_T f) { return unpackUnorm4x8(f.x); }
 #define FRAG_DEPTH_BITS(f) ((f).y)

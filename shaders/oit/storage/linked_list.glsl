@@ -6,6 +6,35 @@
 
 layout(binding = 0, r32ui) uniform coherent uimage2D headPointers;
 layout(binding = 2, r32ui) uniform uimageBuffer nodeNext;
+#if FRAG_CHUNKS > 1  // past one texel buffer: the next pointers' chunks (storage/fragments.glsl)
+FRAG_DECLARE_CHUNK_(1, r32ui, nodeNext_1, 1)
+#endif
+#if FRAG_CHUNKS > 2
+FRAG_DECLARE_CHUNK_(1, r32ui, nodeNext_2, 2)
+#else
+#define nodeNext_2 nodeNext_1
+#endif
+#if FRAG_CHUNKS > 3
+FRAG_DECLARE_CHUNK_(1, r32ui, nodeNext_3, 3)
+#else
+#define nodeNext_3 nodeNext_2
+#endif
+uint frag_next(uint node) {
+#if FRAG_CHUNKS > 1
+  uvec4 r;
+  FRAG_CHUNKED_LOAD(r, nodeNext, nodeNext_1, nodeNext_2, nodeNext_3, node)
+  return r.r;
+#else
+  return imageLoad(nodeNext, int(node)).r;
+#endif
+}
+void frag_set_next(uint node, uint next) {
+#if FRAG_CHUNKS > 1
+  FRAG_CHUNKED_STORE(nodeNext, nodeNext_1, nodeNext_2, nodeNext_3, node, uvec4(next))
+#else
+  imageStore(nodeNext, int(node), uvec4(next));
+#endif
+}
 #ifdef STORAGE_COUNTS
 layout(binding = 3, r32ui) uniform uimage2D fragCounts;
 #endif
@@ -13,7 +42,7 @@ layout(binding = 3, r32ui) uniform uimage2D fragCounts;
 #define LIST_END 0xFFFFFFFFu
 #define FRAG_BEGIN(p) imageLoad(headPointers, (p)).r
 #define FRAG_VALID(node) ((node) != LIST_END)
-#define FRAG_NEXT(node) imageLoad(nodeNext, int(node)).r
+#define FRAG_NEXT(node) frag_next(node)
 #define FRAG_SCREEN_SIZE() imageSize(headPointers)
 
 #ifdef STORAGE_CAPTURE
@@ -27,7 +56,7 @@ void store_fragment(ivec2 p, vec4 rgba, float depth) {
 #endif
   if (node < poolSize && !frag_fault_drop(p)) {
     frag_store(node, frag_pack(rgba, depth));
-    imageStore(nodeNext, int(node), uvec4(imageAtomicExchange(headPointers, p, node)));
+    frag_set_next(node, imageAtomicExchange(headPointers, p, node));
   }
 }
 #endif
