@@ -190,6 +190,8 @@ class OitExperiment final : public Experiment {
         {"overflow_rerenders", T::Integer, "", "captures redone because the node pool overflowed"},
         {"bma_intervals", T::Text, "", "BMA: pixels per depth interval, TOP:COUNT;..."},
         {"node_pool_bytes", T::Integer, "bytes", "fragment storage allocated (nodes, next pointers, heads or offsets)"},
+        {"node_buffers", T::Integer, "",
+         "texel buffers each node array is split into (1 unless the pool passes GL_MAX_TEXTURE_BUFFER_SIZE)"},
         {"capture_count_ms", T::Number, "ms", "PPPA: the count pass and prefix sum, median"},
         {"bma_auto_choice", T::Text, "", "BMA-AUTO: the sort chosen per interval"},
         {"bma_auto_source", T::Text, "", "BMA-AUTO: calibrated now or read from the cache"},

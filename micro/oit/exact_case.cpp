@@ -272,6 +272,7 @@ class ExactCase final : public OitCase {
     m["max_frags_used"] = std::to_string(max_frags_);
     m["node_pool"] = std::to_string(lists_->pool());
     m["node_pool_bytes"] = std::to_string(lists_->bytes());
+    m["node_buffers"] = std::to_string(lists_->buffers());
     m["bytes_per_pixel"] = fmt(static_cast<double>(lists_->bytes()) / (static_cast<double>(width_) * height_));
     if (!count_ms_.empty()) m["capture_count_ms"] = fmt(median_of(count_ms_));
     if (auto_) {

@@ -22,6 +22,7 @@ class FragmentLists final : public FragmentStorage {
   size_t fragments() const override { return fragments_; }
   size_t pool() const override { return pool_; }
   size_t bytes() const override;
+  size_t buffers() const override { return nodes_.chunks(); }
   bool with_counts() const override { return with_counts_; }
   HostLists read_back() const override;
 

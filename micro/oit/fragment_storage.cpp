@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "oit/fragment_lists.hpp"
@@ -117,7 +118,17 @@ void NodePool::read(size_t n, HostLists& h) const {
 size_t max_chunk_texels() {
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  return std::bit_floor(static_cast<size_t>(std::max(max_texels, 1)));
+  size_t limit = static_cast<size_t>(std::max(max_texels, 1));
+  // OITBENCH_MAX_TEXEL_BUFFER lowers the limit, so the tests run the chunked path on small images.
+  if (const char* env = std::getenv("OITBENCH_MAX_TEXEL_BUFFER"); env && *env) {
+    char* end = nullptr;
+    unsigned long long v = std::strtoull(env, &end, 10);
+    if (*end || v == 0)
+      throw std::invalid_argument(std::string("OITBENCH_MAX_TEXEL_BUFFER='") + env +
+                                  "' is not a positive number of texels");
+    limit = std::min<size_t>(limit, v);
+  }
+  return std::bit_floor(limit);
 }
 
 size_t chunks_for(size_t texels) {

@@ -133,6 +133,7 @@ class FragmentStorage {
   virtual size_t fragments() const = 0;  // captured in the last frame
   virtual size_t pool() const = 0;       // fragments the storage holds room for
   virtual size_t bytes() const = 0;      // GPU memory it holds
+  virtual size_t buffers() const = 0;    // texel buffers each node array is split into (ChunkedTexels)
   virtual bool with_counts() const = 0;  // per-pixel counts exist (fragCounts, image unit 3)
   virtual HostLists read_back() const = 0;
 };

@@ -31,6 +31,7 @@ class PackedArrays final : public FragmentStorage {
   size_t fragments() const override { return fragments_; }
   size_t pool() const override { return pool_; }
   size_t bytes() const override;
+  size_t buffers() const override { return nodes_.chunks(); }
   bool with_counts() const override { return true; }
   // Also checks that the fill ended each pixel where the scan said (every counted fragment
   // stored, no pixel spilling into the next): HostLists::error names the first pixel that did not.

@@ -2,6 +2,7 @@
 // matches a CPU one across its block levels, the capture keeps every fragment in one go (sized by
 // the scan, never re-rendered), every resolve reads it through the same storage API and matches
 // the CPU reference, and the capture checks of both layouts fail when fragments are lost.
+#include <cstdlib>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -120,6 +121,43 @@ TEST_F(PackedArrays, CaptureChecksOfBothLayoutsCatchLostFragments) {
   EXPECT_NE(v.reason.find("pixel (0,0): the fill stored 0 of its 24 counted fragments (and 63 more pixel(s))"),
             std::string::npos)
       << v.reason;
+}
+
+// Past one texel buffer (GL_MAX_TEXTURE_BUFFER_SIZE texels; OITBENCH_MAX_TEXEL_BUFFER lowers it here
+// so 98,304 fragments need 3 buffers of 32,768): both layouts split the node arrays, the pool grows
+// into the new buffers during the first capture (the capture programs are rebuilt), and every
+// resolve reads across them; the capture checks still see lost fragments; and past 4 buffers the
+// case is unsupported with the reason.
+TEST_F(PackedArrays, StorageSplitsIntoTexelBuffersPastTheLimit) {
+  setenv("OITBENCH_MAX_TEXEL_BUFFER", "32768", 1);
+  for (const char* capture : {"PPLL", "PPPA"})
+    for (const char* technique : {"BASE-IS", "BMA-IMS", "CS-RBS-L", "RBS-G"}) {
+      auto p = small("planes", "rev", technique, capture);
+      auto v = run_case("oit", p);
+      EXPECT_TRUE(v.valid) << capture << " " << technique << ": " << v.reason;
+      EXPECT_EQ(v.metrics.at("node_buffers"), "3") << capture << " " << technique;
+      EXPECT_EQ(v.metrics.at("total_fragments"), "98304");
+    }
+  auto wide = small("hairball", "rev", "CS-IMS", "PPLL");
+  wide["frag_colour"] = "rgba32f";  // colours and depths in separate arrays, both split
+  setenv("OITBENCH_MAX_TEXEL_BUFFER", "4096", 1);
+  auto v = run_case("oit", wide);
+  EXPECT_TRUE(v.valid) << "rgba32f: " << v.reason;
+  EXPECT_NE(v.metrics.at("node_buffers"), "1");
+  setenv("OITBENCH_MAX_TEXEL_BUFFER", "32768", 1);
+  auto lost = small("planes", "fwd", "BASE-IS", "PPLL");
+  lost["fault"] = "lose-fragment";
+  v = run_case("oit", lost);
+  EXPECT_FALSE(v.valid);
+  EXPECT_NE(v.reason.find("fragments lost"), std::string::npos) << v.reason;
+  setenv("OITBENCH_MAX_TEXEL_BUFFER", "8192", 1);  // 12 buffers: more than the storage binds
+  try {
+    run_case("oit", small("planes", "rev", "BASE-IS", "PPPA"));
+    ADD_FAILURE() << "12 texel buffers were not refused";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("texel buffers"), std::string::npos) << e.what();
+  }
+  unsetenv("OITBENCH_MAX_TEXEL_BUFFER");
 }
 
 TEST_F(PackedArrays, ValidatorCatchesAWrongResolve) {
