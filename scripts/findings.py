@@ -1037,11 +1037,11 @@ def section_resolve_speedups(f):
                                   f"{f_ms(min(b))}–{f_ms(max(b))}" if b else DASH])
         lines += table(["view", "resolve", "resolve ms", "resolve speedup", "total speedup"], body,
                        [False, False, True, True, True])
-        lines += ["", "The fastest per view, and how far BASE-IS itself moved between the view's groups (the "
+        lines += ["The fastest per view, and how far BASE-IS itself moved between the view's groups (the "
                   "reason only paired ratios are compared):", ""]
         lines += table(["view", "fastest resolve", "resolve speedup", "total speedup", "goal", "goal met",
                         "BASE-IS resolve ms across groups"], best_rows, [False, False, True, True, True, False, True])
-        lines += ["", "A list that arrives far-to-near needs no sort and one that arrives near-to-far only a "
+        lines += ["A list that arrives far-to-near needs no sort and one that arrives near-to-far only a "
                   "reversal: the order check turns both into a load and a pass, where every sort still pays for "
                   "its comparisons. The register networks sort without a branch, so on a driver that runs `if` "
                   "as masked straight-line code they cost their fixed size and no more.", ""]
@@ -1060,7 +1060,6 @@ def section_resolve_speedups(f):
                   f"experiment in the same preset, {res(r0)}, {r0.get('keys', '?')} keys, registers, one "
                   "interleaving group): time / RS's time.", ""]
         lines += table(["n", "sort", "ms", "RS ms", "/ RS", ""], body, [True, False, True, True, True, False])
-        lines.append("")
     return lines
 
 def section_knowles2013(f):
