@@ -24,6 +24,7 @@ import matplotlib  # noqa: E402
 
 matplotlib.use(os.environ["MPLBACKEND"])
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.patches  # noqa: E402
 from matplotlib.ticker import FuncFormatter  # noqa: E402
 
 import oitcsv  # noqa: E402
@@ -900,6 +901,174 @@ def pareto_front(points):
         if not front or p[1] < front[-1][1]:
             front.append(p)
     return front
+
+
+def metric_short(metric):
+    """'total_speedup_vs_BASE-IS' -> 'total'; 'average_resolve_speedup_vs_BASE-IS' -> 'average resolve'."""
+    m = re.sub(r"_speedup_vs_.*$|_vs_.*$", "", metric)
+    m = re.sub(r"_time$|_ms$", "", m)
+    return m.replace("_", " ") or metric
+
+
+def paper_figure(title, pairs, paper_hw, ours_hw):
+    """Ours against the paper: per case (scene, view, size) and technique, the paper's speedup over the
+    table's baseline beside ours over the same baseline (pairs: tables.figure_pairs()), one panel per
+    technique (or one panel of techniques where the table has no cases), log axis with 1x marked."""
+    cases = list(dict.fromkeys(c for c, _, _, _, _ in pairs))
+    techniques = list(dict.fromkeys(t for _, t, _, _, _ in pairs))
+    metrics = list(dict.fromkeys(m for _, _, m, _, _ in pairs))
+    by_technique = len(cases) > 1
+    panels = techniques if by_technique else [""]
+    xs_of = cases if by_technique else techniques
+    wide = len(xs_of) * len(metrics) > 24
+    fig, axes = panel_grid(len(panels), ncols=1 if wide else 2, height=3.2)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    value_of = {(c, t, m): (p, o) for c, t, m, p, o in pairs}
+    width = 0.8 / (2 * len(metrics))
+    for ax, tech in zip(axes, panels):
+        for mi, m in enumerate(metrics):
+            for si, side in enumerate(("paper", "ours")):
+                xs, ys = [], []
+                for j, x in enumerate(xs_of):
+                    v = value_of.get((x, tech, m) if by_technique else (cases[0], x, m))
+                    if v is not None:
+                        xs.append(j + (2 * mi + si - (2 * len(metrics) - 1) / 2) * width)
+                        ys.append(v[si])
+                # From 1x up or down: a slowdown reads as a bar below the line.
+                ax.bar(xs, [y - 1.0 for y in ys], bottom=1.0, width=width, color=colours[mi % len(colours)],
+                       alpha=0.45 if side == "paper" else 1.0,
+                       hatch="//" if side == "paper" else None, edgecolor="white" if side == "ours" else "black",
+                       linewidth=0.4, label=f"{side}: {metric_short(m)}")
+        ax.axhline(1.0, color="black", linewidth=0.8)
+        ax.set_yscale("log")
+        ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}x"))
+        ax.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}x" if f"{v:g}"[0] in "25" else ""))
+        ax.set_xticks(range(len(xs_of)))
+        slant = len(xs_of) > 4 or sum(len(x) for x in xs_of) > 30
+        ax.set_xticklabels([x.replace("size ", "") for x in xs_of], rotation=35 if slant else 0,
+                           ha="right" if slant else "center", fontsize=8.5)
+        ax.set_ylabel("speedup over the baseline (x)")
+        ax.grid(True, axis="y", which="both", alpha=0.3)
+        if tech:
+            ax.set_title(tech)
+    fig.suptitle(f"{title}\npaper: {paper_hw}   |   ours: {ours_hw}", y=1.0 - 0.08 / fig.get_size_inches()[1],
+                 va="top", fontsize=10)
+    handles, labels = axes[0].get_legend_handles_labels()
+    height = fig.get_size_inches()[1]
+    top = 1.0 - 0.6 / height
+    fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, top), ncol=min(len(labels), 4), frameon=False)
+    fig.tight_layout(rect=(0, 0, 1, top - 0.3 * math.ceil(len(labels) / 4) / height), h_pad=1.0)
+    return fig
+
+
+APPROX_TECHNIQUES = OIT_APPROX | {"MBOIT", "STOCHASTIC"}
+
+
+def is_exact(row):
+    """An exact technique: not one of the approximate families (a peel limited to fewer layers than the
+    scene's depth is approximate too), and its error, where the row has one, on the floor."""
+    t = row.get("technique") or row.get("variant") or ""
+    if t in APPROX_TECHNIQUES or (t in OIT_PEEL and row.get("max_layers") not in (None, "", "0")):
+        return False
+    errors = [value(row, c) for c in ERROR_COLUMNS if value(row, c) is not None]
+    return all(e <= FLOOR for e in errors)
+
+
+def driver_of(run):
+    """The run's driver column (schema 2), else its renderer."""
+    return next((r["driver"] for r in run.rows if r.get("driver")), None) or run.renderer()
+
+
+def fastest_table(runs):
+    """The exact techniques of each view ranked, per driver: a list of dicts with driver, run, view
+    (scene, view, resolution), and per pass (resolve, total) the cases in order of their median ms."""
+    out = []
+    for run in runs:
+        rows = [r for r in run.rows_of("oit") if oitcsv.is_ok(r) and value(r) is not None]
+        params = [p for p in run.params("oit") if p not in oitcsv.FRAMEWORK_PARAMS]
+        key_cols = ["scene", "view", "width", "height"]
+        totals = [r for r in rows if r["pass"] == "total" and is_exact(r)]
+        own = [p for p in params if p not in key_cols]
+        for gkey, grows in group_rows(totals, key_cols).items():
+            labels = case_labels(grows, own, oit_label)
+            exact = {case_id(r, own) for r in grows}
+            entry = {"driver": driver_of(run), "run": run.label,
+                     "view": f"{gkey[0]} {gkey[1]} {gkey[2]}x{gkey[3]}".strip(), "ranked": {}}
+            for p in ("resolve", "total"):
+                cand = [(value(r), labels[case_id(r, own)]) for r in rows
+                        if r["pass"] == p and all(r.get(c) == v for c, v in zip(key_cols, gkey))
+                        and case_id(r, own) in exact]
+                entry["ranked"][p] = sorted(cand)
+            if len(entry["ranked"]["total"]) > 1:
+                out.append(entry)
+    return out
+
+
+def fastest_figure(entries):
+    """One panel per pass (resolve, total) and driver: views down, exact techniques across, each cell the
+    case's time over the view's fastest (1.00 = fastest, ringed), the colour that ratio on a log scale."""
+    from matplotlib.colors import LogNorm
+    drivers = list(dict.fromkeys(e["driver"] for e in entries))
+    panels = [(d, p) for d in drivers for p in ("resolve", "total")]
+    techniques = sorted({t for e in entries for p in ("resolve", "total") for _, t in e["ranked"][p]})
+    n_views = max(sum(1 for e in entries if e["driver"] == d) for d in drivers)
+    wide = len(techniques) > 7
+    fig, axes = panel_grid(len(panels), ncols=1 if wide else 2,
+                           height=1.3 + 0.36 * n_views + (0.08 * max(len(t) for t in techniques) if techniques else 0))
+    norm = LogNorm(vmin=1.0, vmax=4.0)
+    for ax, (d, p) in zip(axes, panels):
+        mine = [e for e in entries if e["driver"] == d]
+        grid = [[float("nan")] * len(techniques) for _ in mine]
+        for i, e in enumerate(mine):
+            ranked = e["ranked"][p]
+            if not ranked:
+                continue
+            best = ranked[0][0]
+            for ms, t in ranked:
+                j = techniques.index(t)
+                ratio = ms / best if best > 0 else float("nan")
+                grid[i][j] = min(max(ratio, 1.0), 4.0)
+                bold = t == ranked[0][1]
+                text = (f"{ms:.0f} ms" if ms >= 100 else f"{ms:.3g} ms") if bold else f"{ratio:.2f}"
+                ax.text(j, i, text, ha="center", va="center", fontsize=7.5, fontweight="bold" if bold else "normal",
+                        color="white" if ratio > 2.2 else "black")
+                if bold:
+                    ax.add_patch(matplotlib.patches.Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False,
+                                                              edgecolor="black", linewidth=1.8))
+        image = ax.imshow(grid, cmap="YlOrRd", norm=norm, aspect="auto")
+        bar = fig.colorbar(image, ax=ax, fraction=0.035, pad=0.01, ticks=[1, 1.5, 2, 3, 4])
+        bar.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}x"))
+        bar.ax.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: ""))
+        bar.set_label("time / fastest (4x and above alike)", fontsize=8)
+        ax.set_xticks(range(len(techniques)))
+        ax.set_xticklabels(techniques, rotation=35, ha="right", fontsize=8.5)
+        ax.set_yticks(range(len(mine)))
+        ax.set_yticklabels([e["view"] for e in mine], fontsize=8.5)
+        ax.set_title(f"{p} pass, {d}" + f" [{', '.join(dict.fromkeys(e['run'] for e in mine))}]")
+    height = fig.get_size_inches()[1]
+    fig.suptitle("The fastest exact technique per view and driver: each case's median time over the view's "
+                 "fastest\n(ringed: the fastest, with its median ms; the others: time / fastest)",
+                 y=1.0 - 0.08 / height, va="top")
+    fig.tight_layout(rect=(0, 0, 1, 1.0 - 0.6 / height), h_pad=1.5)
+    return fig
+
+
+def fastest_lines(entries):
+    """The summary table as text rows: driver, view, pass, fastest (ms), the runner-up and its ratio."""
+    out = []
+    for e in entries:
+        for p in ("resolve", "total"):
+            ranked = e["ranked"][p]
+            if not ranked:
+                continue
+            second = f"{ranked[1][1]} ({ranked[1][0] / ranked[0][0]:.2f}x)" if len(ranked) > 1 and ranked[0][0] > 0 \
+                else "\u2014"
+            out.append([e["driver"], e["view"], p, ranked[0][1], f"{ranked[0][0]:.4g}", second, str(len(ranked))])
+    return out
+
+
+FASTEST_HEADER = ["driver", "view", "pass", "fastest exact technique", "ms", "runner-up (time / fastest)",
+                  "exact cases"]
 
 
 def invalid_lines(data):
