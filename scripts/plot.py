@@ -1,10 +1,13 @@
 #!/usr/bin/python3
 """Figures from oitbench runs: one PNG and one SVG per experiment and input file.
 
-    scripts/plot.py RUN.csv [RUN2.csv ...] [-o DIR]
+    scripts/plot.py RUN.csv [RUN2.csv ...] [-o DIR] [--fastest]
 
 Only valid rows (status ok, valid 1) are drawn; the others are listed on stdout and in a note on the
-figure. Each experiment gets its own plot function from PLOTTERS; an experiment without one gets
+figure. Every valid row is drawn in some panel or named in that note with the reason (stdout counts both
+per figure), panels wrap into rows of the report page's width, and bars and points are keyed on every
+parameter that tells cases apart. --fastest adds the fastest exact technique per view and driver.
+Each experiment gets its own plot function from PLOTTERS; an experiment without one gets
 generic_plot(): median ms against its main numeric parameter, one line per variant, MAD as error bars.
 Adding a figure for a new experiment: write `def plot_<name>(data)` returning a Figure and decorate it
 with @plotter("<name>"); curves() and bars() do most of the work.
@@ -276,9 +279,10 @@ def finish(fig, data, what=None, legend_from=None):
             labels[i]) if labels[i] in PASS_ORDER else 99, labels[i]))
         handles, labels = [handles[i] for i in order], [labels[i] for i in order]
         if handles:
-            fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, top), ncol=min(len(labels), 7),
-                       frameon=False)
-            top -= 0.28 * math.ceil(len(labels) / 7) / height
+            lines = math.ceil(len(labels) / 8)
+            fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, top),
+                       ncol=math.ceil(len(labels) / lines), frameon=False)
+            top -= 0.28 * lines / height
     fig.tight_layout(rect=(0, 0, 1, top), h_pad=1.2, w_pad=1.0)
     return fig
 
@@ -832,7 +836,7 @@ def scatter_front(ax, points, x_label, column, title, sized):
                     for i, f in enumerate(families)]
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=7.5)
     elif handles:
-        ax.legend(handles=handles, loc="upper right")
+        ax.legend(handles=handles, loc="best")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel(x_label)
@@ -846,15 +850,15 @@ def error_vs_time(ax, rows, column, title, params, labels):
     points = error_points(rows, column, params, labels)
     largest = scatter_front(ax, points, "total median time (ms)", column, "", sized=True)
     note = f"\n(marker area: bytes/pixel, largest {largest:g})" if largest else ""
-    ax.set_title(f"{column} against time: {title}{note}")
+    ax.set_title(f"{column} against time{note}" if len(title) > 30 else f"{column} against time: {title}{note}")
 
 
 def error_vs_memory(ax, rows, column, title, params, labels):
     """Error against bytes_per_pixel, every case a point, with the front of nothing both smaller and
     more exact."""
     points = [(max(p[0], 1.0),) + p[1:] for p in error_points(rows, column, params, labels, "bytes_per_pixel")]
-    scatter_front(ax, points, "bytes per pixel (the technique's storage; 0 drawn at 1)", column,
-                  f"{column} against memory: {title}", sized=False)
+    scatter_front(ax, points, "bytes per pixel (storage; 0 drawn at 1)", column,
+                  f"{column} against memory" if len(title) > 30 else f"{column} against memory: {title}", sized=False)
 
 
 def stacked_passes(ax, rows, totals, params, labels, title, legend=True):
@@ -890,8 +894,6 @@ def stacked_passes(ax, rows, totals, params, labels, title, legend=True):
     ax.set_title(title)
     if legend:
         ax.legend(loc="upper left", fontsize=7.5, ncol=2, title="pass")
-    if spread_is_wide(tot):
-        ax.set_yscale("log")
 
 
 def pareto_front(points):
@@ -942,7 +944,7 @@ def paper_figure(title, pairs, paper_hw, ours_hw):
         ax.axhline(1.0, color="black", linewidth=0.8)
         ax.set_yscale("log")
         ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}x"))
-        ax.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}x" if f"{v:g}"[0] in "25" else ""))
+        ax.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}x" if f"{v:.0e}"[0] in "25" else ""))
         ax.set_xticks(range(len(xs_of)))
         slant = len(xs_of) > 4 or sum(len(x) for x in xs_of) > 30
         ax.set_xticklabels([x.replace("size ", "") for x in xs_of], rotation=35 if slant else 0,
@@ -1122,6 +1124,18 @@ def plot_experiment(data):
     return PLOTTERS.get(data.experiment, generic_plot)(data)
 
 
+def unique_labels(runs):
+    """Runs with the same file name (llvmpipe/presets/default.csv, zink-lavapipe/presets/default.csv) get
+    as many parent folders in their label as tell them apart, so no figure overwrites another's."""
+    depth = 0
+    while len({r.label for r in runs}) < len(runs) and depth < 8:
+        depth += 1
+        for r in runs:
+            parts = os.path.abspath(r.path)[:-len(".csv")].split(os.sep) if r.path.endswith(".csv") else \
+                os.path.abspath(r.path).split(os.sep)
+            r.label = "-".join(parts[-1 - depth:])
+
+
 def figure_name(experiment, run, ambiguous):
     return f"{experiment}-{run.label}" if ambiguous else experiment
 
@@ -1159,6 +1173,9 @@ def main(argv=None):
     ap.add_argument("-o", "--out-dir", help="where the figures go (default: figures/ beside the first CSV)")
     ap.add_argument("--raw", nargs="*", default=[], help="matching --raw files (make parameter columns exact)")
     ap.add_argument("--format", default="png,svg", help="comma-separated figure formats (default png,svg)")
+    ap.add_argument("--fastest", action="store_true",
+                    help="also the fastest exact technique per view and driver over all the given runs "
+                         "(fastest.FORMAT, and its table on stdout)")
     args = ap.parse_args(argv)
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 
@@ -1168,6 +1185,7 @@ def main(argv=None):
     except oitcsv.ResultsError as e:
         print(f"plot.py: {e}", file=sys.stderr)
         return 2
+    unique_labels(runs)
     out_dir = args.out_dir or os.path.join(os.path.dirname(os.path.abspath(args.csv[0])), "figures")
     os.makedirs(out_dir, exist_ok=True)
     count = {}
@@ -1185,6 +1203,16 @@ def main(argv=None):
             drawn, noted = data.counts()
             print(f"{run.label}: {exp}: {len(data.valid)} valid rows, {len(lines)} not plotted; "
                   f"{drawn} drawn, {noted} named in the note -> {os.path.join(out_dir, name)}.{{{args.format}}}")
+    if args.fastest:
+        entries = fastest_table(runs)
+        if not entries:
+            print("plot.py: --fastest: no view of the given runs has two or more exact oit techniques", file=sys.stderr)
+            return 2
+        save(fastest_figure(entries), os.path.join(out_dir, "fastest"), formats)
+        print(" | ".join(FASTEST_HEADER))
+        for line in fastest_lines(entries):
+            print(" | ".join(line))
+        print(f"fastest: {len(entries)} views -> {os.path.join(out_dir, 'fastest')}.{{{args.format}}}")
     return 0
 
 
