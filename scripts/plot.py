@@ -303,12 +303,15 @@ def spread_is_wide(values):
 
 
 def draw_lines(ax, rows, x, label_columns, per=1.0, per_column=None, column="median_ms", mad_column="mad_ms",
-               shown=None):
+               shown=None, styles=None):
     """One line per group of `label_columns`, y = column / per (or / row[per_column]), MAD bars; with
-    `shown`, the legend gives those columns' values alone (its title names them)."""
+    `shown`, the legend gives those columns' values alone (its title names them). `styles` (a list of
+    every group key of the figure) gives a group the same colour and line style in every panel."""
     xs_all, ys_all = [], []
-    n_colors = len(plt.rcParams["axes.prop_cycle"].by_key()["color"])
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    n_colors = len(colors)
     for i, (key, grp) in enumerate(group_rows(rows, label_columns).items()):
+        i = styles.index(key) if styles and key in styles else i
         pts, used = [], []
         for r in grp:
             xv, y = oitcsv.to_float(r.get(x)), value(r, column)
@@ -323,7 +326,7 @@ def draw_lines(ax, rows, x, label_columns, per=1.0, per_column=None, column="med
         xs, ys, es = zip(*pts)
         # Past the colour cycle the line style changes, so two curves never look the same.
         ax.errorbar(xs, ys, yerr=es if mad_column else None, marker="o", markersize=4, capsize=3, linewidth=1.5,
-                    linestyle=("-", "--", ":", "-.")[(i // n_colors) % 4],
+                    color=colors[i % n_colors], linestyle=("-", "--", ":", "-.")[(i // n_colors) % 4],
                     label=(", ".join(str(grp[0].get(c, "")) for c in shown) if shown is not None
                            else group_label(grp[0], label_columns)) or None)
         mark(used)
@@ -396,16 +399,20 @@ def curves(data, x_candidates=(), facet_candidates=(), ylabel=TIME_LABEL, what=N
         for fkey, frows in (group_rows(totals, [facet]) if facet else {(): totals}).items():
             title = f"{error_col} against exact" + (f", {facet} = {fkey[0]}" if facet else "")
             panels.append((title, [r for r in frows if value(r, error_col) is not None], error_col))
+    styles = list(group_rows(rows, label_columns).keys())
+    entries = max(len(group_rows(prows, label_columns)) for _, prows, _ in panels)
+    lines = entries if entries <= 4 else math.ceil(entries / 2)
     fig, axes = panel_grid(len(panels), ncols=2 if label_columns else PANEL_COLUMNS,
-                           height=PANEL_HEIGHT_IN + (0.5 + 0.17 * MAX_CURVES if label_columns else 0))
+                           height=PANEL_HEIGHT_IN + (0.75 + 0.2 * lines if label_columns else 0))
     for ax, (title, prows, what_y) in zip(axes, panels):
         # The legend names what varies in this panel; the rest is in its title or the same for all.
         shown = [c for c in label_columns if len({r.get(c, "") for r in prows}) > 1] or label_columns[:1]
         if what_y in ERROR_COLUMNS:
-            xs, ys = draw_lines(ax, prows, x, label_columns, column=what_y, mad_column=None, shown=shown)
+            xs, ys = draw_lines(ax, prows, x, label_columns, column=what_y, mad_column=None, shown=shown,
+                                styles=styles)
             ax.set_ylabel(f"{what_y} (colour units, 0 to 1)")
         else:
-            xs, ys = draw_lines(ax, prows, x, label_columns, shown=shown)
+            xs, ys = draw_lines(ax, prows, x, label_columns, shown=shown, styles=styles)
             ax.set_ylabel(what_y)
         scale_axes(ax, xs, ys, logy)
         ax.set_xlabel(axis_label(x))
