@@ -1179,7 +1179,8 @@ def main(argv=None):
     ap.add_argument("csv", nargs="+", help="summary CSVs written by `oitbench run --out`")
     ap.add_argument("-o", "--out-dir", help="where the figures go (default: figures/ beside the first CSV)")
     ap.add_argument("--raw", nargs="*", default=[], help="matching --raw files (make parameter columns exact)")
-    ap.add_argument("--format", default="png,svg", help="comma-separated figure formats (default png,svg)")
+    ap.add_argument("--format", default="png,svg",
+                    help="comma-separated figure formats (default png,svg); none: draw and count, write nothing")
     ap.add_argument("--fastest", action="store_true",
                     help="also the fastest exact technique per view and driver over all the given runs "
                          "(fastest.FORMAT, and its table on stdout)")
@@ -1199,7 +1200,8 @@ def main(argv=None):
     for run in runs:
         for exp in run.experiments():
             count[exp] = count.get(exp, 0) + 1
-    formats = [f.strip() for f in args.format.split(",") if f.strip()]
+    # "none": every figure drawn and counted, no file written (the reference CSVs' test).
+    formats = [f.strip() for f in args.format.split(",") if f.strip() and f.strip() != "none"]
     for run in runs:
         for exp in run.experiments():
             data, fig, lines = draw(run, exp)

@@ -1,7 +1,6 @@
 """plot.py: a figure per experiment, valid rows only, invalid ones named; the registry's figures and the
 generic fallback on synthetic runs, and the occupancy staircase on a real quick run when OITBENCH_EXE is set.
-On every committed reference CSV under results/: every valid row is drawn or named in the figure's note."""
-import csv
+(The committed reference CSVs: test_reference_figures.py.)"""
 import os
 import re
 import unittest
@@ -9,7 +8,6 @@ import unittest
 import synthetic as syn
 from support import TempDirTest, oitbench_exe, run_oitbench, run_script
 
-RESULTS = os.path.join(os.path.dirname(syn.SCRIPTS), "results")
 COUNT_LINE = re.compile(r"^(?P<label>\S+): (?P<exp>\S+): (?P<valid>\d+) valid rows, (?P<bad>\d+) not plotted; "
                         r"(?P<drawn>\d+) drawn, (?P<noted>\d+) named in the note -> ", re.M)
 
@@ -143,63 +141,6 @@ class PlotSynthetic(TempDirTest):
         for title in ("insertion, part 1/2", "insertion, part 2/2", "bubble", "merge networks", "shell", "rbs",
                       "newsort", "n (fragments per pixel)"):
             self.assertIn(title, svg)
-
-
-class PlotReferenceCsvs(TempDirTest):
-    """Every committed summary CSV under results/ (the reference runs, the effects, techniques and
-    self-shadowing runs, the rendered images' rows): drawn rows + rows named in the note = valid rows."""
-
-    def reference_csvs(self):
-        found = []
-        for root, dirs, files in os.walk(RESULTS):
-            dirs[:] = sorted(d for d in dirs if not os.path.isfile(os.path.join(root, d, "index.html")))
-            for f in sorted(files):
-                path = os.path.join(root, f)
-                if f.endswith(".csv") and not f.endswith("_raw.csv"):
-                    with open(path, newline="", encoding="utf-8") as fh:
-                        header = next(csv.reader(fh), [])
-                    if "experiment" in header and "median_ms" in header:
-                        found.append(path)
-        return found
-
-    @staticmethod
-    def valid_rows(path):
-        with open(path, newline="", encoding="utf-8") as f:
-            rows = list(csv.DictReader(f))
-        out = {}
-        for r in rows:
-            if r["status"] == "ok" and r["valid"] == "1":
-                out[r["experiment"]] = out.get(r["experiment"], 0) + 1
-        return out
-
-    def test_every_valid_row_is_drawn_or_named_in_the_note(self):
-        csvs = self.reference_csvs()
-        self.assertGreater(len(csvs), 15, csvs)
-        proc = run_script("plot.py", *csvs, "-o", self.path("fig"), "--format", "png")
-        counted = {}
-        for m in COUNT_LINE.finditer(proc.stdout):
-            self.assertEqual(int(m["drawn"]) + int(m["noted"]), int(m["valid"]), m.group(0))
-            counted.setdefault(m["exp"], []).append(int(m["valid"]))
-        expected = {}
-        for path in csvs:
-            for exp, n in self.valid_rows(path).items():
-                expected.setdefault(exp, []).append(n)
-        self.assertEqual({k: sorted(v) for k, v in counted.items()}, {k: sorted(v) for k, v in expected.items()})
-        # The committed runs need no note: every valid row of them is in a panel.
-        self.assertNotIn("valid, not drawn", proc.stdout)
-
-    def test_the_knowles2014_figure_shows_all_nine_views(self):
-        path = os.path.join(RESULTS, "llvmpipe", "presets", "knowles2014.csv")
-        proc = run_script("plot.py", path, "-o", self.path("k"), "--format", "svg")
-        self.assertRegex(proc.stdout, r"oit: 405 valid rows, 0 not plotted; 405 drawn, 0 named in the note")
-        with open(self.path("k/oit.svg"), encoding="utf-8") as f:
-            svg = f.read()
-        for view in ("scene=planes, view=fwd", "scene=planes, view=rev", "scene=hairball, view=fwd",
-                     "scene=hairball, view=rev", "scene=engine-grid, view=V1", "scene=engine-grid, view=V2",
-                     "scene=engine-grid, view=V3", "scene=house, view=V1", "scene=house, view=V2"):
-            self.assertIn(view, svg)
-        self.assertIn("every technique exact: no error panels", svg)
-        self.assertNotIn("against time", svg)
 
 
 @unittest.skipUnless(oitbench_exe(), "OITBENCH_EXE not set (ctest sets it)")

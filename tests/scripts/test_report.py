@@ -156,50 +156,6 @@ class ReportInBrowser(ReportCase):
         self.assertEqual(broken, [])
 
 
-class ReportPaperFigures(ReportCase):
-    """The committed reference runs at the papers' presets (and Knowles 2014's quick variant beside them):
-    the figure of ours against the paper beside each paper table, the fastest-technique summary, all
-    decoding in headless chromium, and each table opened on the run at its paper's preset."""
-    PRESETS = ("knowles2014", "knowles2014-quick", "knowles2013", "bruell2018-sorting", "bruell2018-approx",
-               "bruell2018-stencil", "bruell2018-storage")
-    # Knowles 2014 tables 1 to 3, Knowles 2013 tables 1 and 2, Brüll's tables with our rows.
-    PAPER_FIGURES = ("knowles2014-1", "knowles2014-2", "knowles2014-3", "knowles2013-1", "knowles2013-2",
-                     "bruell-a-1", "bruell-a-2", "bruell-a-3", "bruell-a-4", "bruell-4-1", "bruell-5-1", "bruell-6-1")
-
-    def setUp(self):
-        super().setUp()
-        if not os.access(CHROMIUM, os.X_OK):
-            self.fail(f"{CHROMIUM} not found: run scripts/deps.sh")
-
-    def test_ours_against_the_paper_and_the_fastest_technique_load(self):
-        results = os.path.join(os.path.dirname(syn.SCRIPTS), "results", "llvmpipe", "presets")
-        os.makedirs(self.path("runs/presets"))
-        for name in self.PRESETS:
-            for suffix in (".csv", "_raw.csv"):
-                if os.path.isfile(os.path.join(results, name + suffix)):
-                    shutil.copy(os.path.join(results, name + suffix), self.path("runs/presets"))
-        proc = self.report(self.path("runs"))
-        self.assertIn("a fastest-technique summary", proc.stdout)
-        index = self.path("report/index.html")
-        parsed = PageParser(read(index)).images
-        paper = [src for src, cls in parsed if cls == "paper-figure"]
-        for name in self.PAPER_FIGURES:
-            self.assertIn(f"figures/tables/{name}.png", paper)
-        self.assertEqual([src for src, cls in parsed if cls == "summary-figure"], ["figures/fastest.png"])
-        images, _, broken, dom = browser_check(index)
-        body = PageParser(dom).body
-        self.assertEqual(broken, [])
-        self.assertEqual(images, len(parsed))
-        self.assertEqual(int(body["data-paper-figures"]), len(paper))
-        self.assertEqual(int(body["data-summary-figures"]), 1)
-        # The table of Knowles 2014 opens on the run at its preset, not the quick one beside it.
-        page = read(index)
-        section = page[page.index('id="table-knowles2014-1"'):page.index('id="table-knowles2014-2"')]
-        opened = re.search(r'<details class="table-run" open><summary>ours from <code>([^<]*)</code>', section)
-        self.assertEqual(opened.group(1), "presets/knowles2014.csv")
-        self.assertIn("paper: NVIDIA GTX Titan", read(self.path("report/figures/tables/knowles2014-3.svg")))
-
-
 class ReportContent(ReportCase):
     def test_metadata_and_every_failed_case_with_its_reason(self):
         a, b = self.write_runs()
