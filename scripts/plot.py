@@ -28,7 +28,7 @@ import matplotlib  # noqa: E402
 matplotlib.use(os.environ["MPLBACKEND"])
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.patches  # noqa: E402
-from matplotlib.ticker import FuncFormatter  # noqa: E402
+from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator  # noqa: E402
 
 import oitcsv  # noqa: E402
 
@@ -919,6 +919,18 @@ def metric_short(metric):
     return m.replace("_", " ") or metric
 
 
+def speedup_ticks(ax):
+    """Labelled ticks on a log speedup axis whatever its range: 1x, 2x, 5x, 10x over decades, finer
+    steps (1.1x, 1.2x, 1.5x, ...) when the axis spans less than one."""
+    lo, hi = ax.get_ylim()
+    span = hi / max(lo, 1e-9)
+    subs = (1.0, 1.1, 1.2, 1.3, 1.5, 1.7, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0) if span < 3 else \
+        (1.0, 1.5, 2.0, 3.0, 5.0, 7.0) if span < 12 else (1.0, 2.0, 5.0)
+    ax.yaxis.set_major_locator(LogLocator(base=10, subs=subs))
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}x"))
+    ax.yaxis.set_minor_locator(NullLocator())
+
+
 def paper_figure(title, pairs, paper_hw, ours_hw):
     """Ours against the paper: per case (scene, view, size) and technique, the paper's speedup over the
     table's baseline beside ours over the same baseline (pairs: tables.figure_pairs()), one panel per
@@ -950,8 +962,7 @@ def paper_figure(title, pairs, paper_hw, ours_hw):
                        linewidth=0.4, label=f"{side}: {metric_short(m)}")
         ax.axhline(1.0, color="black", linewidth=0.8)
         ax.set_yscale("log")
-        ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}x"))
-        ax.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}x" if f"{v:.0e}"[0] in "25" else ""))
+        speedup_ticks(ax)
         ax.set_xticks(range(len(xs_of)))
         slant = len(xs_of) > 4 or sum(len(x) for x in xs_of) > 30
         ax.set_xticklabels([x.replace("size ", "") for x in xs_of], rotation=35 if slant else 0,
