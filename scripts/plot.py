@@ -723,8 +723,8 @@ def effects_panel(ax, rows, passes, title, legend, label_of=oit_label):
     ax.set_xticks(ticks)
     ax.set_xticklabels(labels, fontsize=7)
     for ti, t in enumerate(techniques):
-        ax.annotate(t, (ti, 0), xycoords=("data", "axes fraction"), xytext=(0, -18), textcoords="offset points",
-                    ha="center", fontsize=8, rotation=15)
+        ax.annotate(t, (ti, 0), xycoords=("data", "axes fraction"), xytext=(0, -26), textcoords="offset points",
+                    ha="center", fontsize=8.5)
     ax.set_ylim(0, ax.get_ylim()[1] * 1.6)  # room for the legend above the bars
     ax.set_ylabel("median time (ms)")
     ax.grid(True, axis="y", alpha=0.3)
@@ -755,7 +755,8 @@ def plot_oit(data):
             (["format"] if formats else [])
         panels.append([(k, grows, title) for k in kinds])
     flat = [p for group in panels for p in group]
-    wide = any(len({case_id(r, data.params) for r in g[0][1]}) > MANY_CASES for g in panels)
+    wide = any(len({case_id(r, data.params) for r in g[0][1]}) > MANY_CASES or effects_vary(g[0][1])
+               for g in panels)
     if all(len(g) == 1 for g in panels):
         fig, axes = panel_grid(len(flat), ncols=1 if wide else PANEL_COLUMNS, height=3.9)
     else:
@@ -806,7 +807,9 @@ def error_points(rows, column, params, labels, x_column=None):
         x = value(r) if x_column is None else value(r, x_column)
         if e is None or x is None:
             continue
-        label = labels.get(case_id(r, params), oit_label(r)) + (f" [{r.get('effects')}]" if with_effects else "")
+        label = labels.get(case_id(r, params), oit_label(r))
+        if with_effects and "effects=" not in label:
+            label += f" [{r.get('effects')}]"
         out.append((x, max(e, FLOOR), label, value(r, "bytes_per_pixel"), r))
     return out
 
@@ -825,12 +828,18 @@ def scatter_front(ax, points, x_label, column, title, sized):
     largest = max((p[3] for p in points if p[3] is not None), default=None) if sized else None
     front = pareto_front([(x, e, label) for x, e, label, _, _ in points])
     on_front = {p[2] for p in front}
+    floor = []
     for x, e, label, mem, r in points:
         ax.scatter(x, e, color=colours[families.index(family_of(label)) % len(colours)],
                    s=marker_area(mem, largest) if sized else 28, alpha=0.8, zorder=3)
-        if len(points) <= MANY_CASES or label in on_front:
+        if e <= FLOOR and label not in on_front:
+            floor.append(label)  # the exact ones share the floor: named together, not on top of each other
+        elif len(points) <= MANY_CASES or label in on_front:
             ax.annotate(label, (x, e), fontsize=7.5, xytext=(3, 2), textcoords="offset points",
                         color="tab:red" if label in on_front else "black")
+    if floor and len(points) <= MANY_CASES:
+        ax.text(0.98, 0.04, "on the floor (exact):\n" + "\n".join(floor), transform=ax.transAxes, ha="right",
+                va="bottom", fontsize=7, bbox=dict(boxstyle="round", fc="white", ec="0.8", alpha=0.9), zorder=5)
     mark([p[4] for p in points])
     handles = []
     if front:
