@@ -1004,8 +1004,9 @@ def is_exact(row):
 
 
 def driver_of(run):
-    """The run's driver column (schema 2), else its renderer."""
-    return next((r["driver"] for r in run.rows if r.get("driver")), None) or run.renderer()
+    """The driver as GL_RENDERER and backend name it: the same for schema 1 files (no driver column) and
+    schema 2 files of one driver, different for llvmpipe and zink over lavapipe."""
+    return run.renderer()
 
 
 def fastest_table(runs):
