@@ -838,7 +838,7 @@ def scatter_front(ax, points, x_label, column, title, sized):
             ax.annotate(label, (x, e), fontsize=7.5, xytext=(3, 2), textcoords="offset points",
                         color="tab:red" if label in on_front else "black")
     if floor and len(points) <= MANY_CASES:
-        ax.text(0.98, 0.04, "on the floor (exact):\n" + "\n".join(floor), transform=ax.transAxes, ha="right",
+        ax.text(0.98, 0.08, "on the floor (exact):\n" + "\n".join(floor), transform=ax.transAxes, ha="right",
                 va="bottom", fontsize=7, bbox=dict(boxstyle="round", fc="white", ec="0.8", alpha=0.9), zorder=5)
     mark([p[4] for p in points])
     handles = []
@@ -851,8 +851,7 @@ def scatter_front(ax, points, x_label, column, title, sized):
         handles += [plt.Line2D([], [], color=colours[i % len(colours)], marker="o", linestyle="", label=f)
                     for i, f in enumerate(families)]
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=7.5)
-    elif handles:
-        ax.legend(handles=handles, loc="best")
+    # Fewer points: each is labelled, the front's in red (the title says so): no legend to cover them.
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel(x_label)
@@ -866,7 +865,8 @@ def error_vs_time(ax, rows, column, title, params, labels):
     points = error_points(rows, column, params, labels)
     largest = scatter_front(ax, points, "total median time (ms)", column, "", sized=True)
     note = f"\n(marker area: bytes/pixel, largest {largest:g})" if largest else ""
-    ax.set_title(f"{column} against time{note}" if len(title) > 30 else f"{column} against time: {title}{note}")
+    ax.set_title((f"{column} against time" if len(title) > 30 else f"{column} against time: {title}") +
+                 f" (red: Pareto front){note}")
 
 
 def error_vs_memory(ax, rows, column, title, params, labels):
@@ -874,7 +874,8 @@ def error_vs_memory(ax, rows, column, title, params, labels):
     more exact."""
     points = [(max(p[0], 1.0),) + p[1:] for p in error_points(rows, column, params, labels, "bytes_per_pixel")]
     scatter_front(ax, points, "bytes per pixel (storage; 0 drawn at 1)", column,
-                  f"{column} against memory" if len(title) > 30 else f"{column} against memory: {title}", sized=False)
+                  (f"{column} against memory" if len(title) > 30 else f"{column} against memory: {title}") +
+                  " (red: Pareto front)", sized=False)
 
 
 def stacked_passes(ax, rows, totals, params, labels, title, legend=True):
