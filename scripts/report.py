@@ -349,6 +349,10 @@ window.addEventListener("load", function () {
   var broken = imgs.filter(function (i) { return !i.complete || i.naturalWidth === 0; })
                    .map(function (i) { return i.getAttribute("src"); });
   var figures = imgs.filter(function (i) { return i.classList.contains("figure"); }).length;
+  var paper = imgs.filter(function (i) { return i.classList.contains("paper-figure"); }).length;
+  var summary = imgs.filter(function (i) { return i.classList.contains("summary-figure"); }).length;
+  document.body.setAttribute("data-paper-figures", String(paper));
+  document.body.setAttribute("data-summary-figures", String(summary));
   document.body.setAttribute("data-images", String(imgs.length));
   document.body.setAttribute("data-figures", String(figures));
   document.body.setAttribute("data-broken", JSON.stringify(broken));
@@ -420,7 +424,7 @@ dl.meta dd { margin: 0; overflow-wrap: anywhere; }
          font-weight: 600; }
 .note { background: #fff8c5; border: 1px solid #eac54f; border-radius: 6px; padding: 8px 12px; }
 figure { margin: 16px 0 28px; }
-figure img.figure { display: block; max-width: 100%; height: auto; border: 1px solid var(--line);
+figure img.figure, figure img.paper-figure, figure img.summary-figure { display: block; max-width: 100%; height: auto; border: 1px solid var(--line);
                     border-radius: 6px; background: #fff; }
 figcaption { font-size: 13px; color: var(--muted); margin-top: 4px; }
 .gallery { display: grid; grid-template-columns: repeat(auto-fill, minmax(250px, 1fr)); gap: 14px; }
@@ -457,6 +461,8 @@ def howto_section(page, have_tables, have_images):
          "that is not ok is listed with its reason."),
         ("Figures", "drawn by <code>scripts/plot.py</code> from the valid rows only: medians of the primary "
          "clock with MAD (median absolute deviation) bars; cases left out are named in a note on the figure. "
+         "Every valid row is drawn, or named in the figure's note with the reason; bars and points are keyed on "
+         "every parameter that tells cases apart, and each pass has one colour in every figure. "
          "Click a figure for its SVG. On a shared 2-core machine the same case moves 20&ndash;30% between "
          "runs: read shapes and ratios, and use <code>scripts/compare.py</code> for differences."),
     ]
@@ -465,7 +471,11 @@ def howto_section(page, have_tables, have_images):
                       "rows for, the paper's numbers and ours side by side. Hardware differs by orders of "
                       "magnitude, so compare the <em>speedup</em> columns (time of the table's baseline / "
                       "time, computed alike for paper and ours), not milliseconds. Each run is matched on its "
-                      "own; the paper's rows that run has nothing for are folded away below its table."))
+                      "own; the paper's rows that run has nothing for are folded away below its table. The run "
+                      "opened by default is the one at the table's own preset; beside the table, its figure: "
+                      "the paper's speedup (hatched) and ours (solid) per case and technique."))
+        items.append(("Fastest technique", "per view and driver, the exact techniques ranked by their resolve "
+                      "pass and their total, each as its time over the view's fastest."))
     if have_images:
         items.append(("Rendered images", "<code>oitbench render</code> output: the image, its difference "
                       "to the exact CPU reference amplified 8 times (black is exact) and the depth "
@@ -554,7 +564,9 @@ def figures_of(page, inp, out_dir, failures):
                      f"{esc(type(e).__name__)}: {esc(e)}</p>")
             continue
         count += 1
-        caption = f"{exp}: {len(data.ok)} valid row(s)" + (
+        drawn, noted = data.counts()
+        caption = f"{exp}: {len(data.valid)} valid row(s), {drawn} drawn" + (
+            f", {noted} named in the figure's note" if noted else "") + (
             f", {len(lines)} case(s) not plotted (listed above)" if lines else "")
         page.add(f'<figure><a href="{url(rel + ".svg")}">'
                  f"{img_tag(rel + '.png', stem + '.png', f'{exp} figure of {inp.rel}', 'figure')}</a>"
@@ -563,8 +575,80 @@ def figures_of(page, inp, out_dir, failures):
     return count
 
 
-def tables_section(page, inputs, paper_dir, shown_paper_dir):
-    """The paper tables with any of our rows, one per (table, run) with rows; returns how many."""
+def paper_figure(page, table, inp, paper_rows, out_dir, failures):
+    """Beside a paper table: its speedups against ours from the run opened by default (plot.py's
+    paper_figure), in out_dir/figures/tables/NAME.png and .svg; nothing where no row has both."""
+    ours = tables.Ours([inp.run])
+    pairs = tables.figure_pairs(table, tables.build_rows(table, paper_rows, ours))
+    if not pairs:
+        return
+    rel = os.path.join("figures", "tables", slug(table.name))
+    stem = os.path.join(out_dir, rel)
+    os.makedirs(os.path.dirname(stem), exist_ok=True)
+    print(f"report.py: figure: {table.name} against {inp.rel}", flush=True)
+    try:
+        paper_hw, ours_hw = tables.figure_hardware(table, ours, paper_rows)
+        plot.save(plot.paper_figure(f"{table.title} [ours: {inp.run.label}]", pairs, paper_hw, ours_hw), stem)
+    except Exception as e:  # a figure bug on odd data must not cost the rest of the page
+        plot.plt.close("all")
+        failures.append(f"{table.name}: {type(e).__name__}: {e}")
+        page.add(f'<p class="note">The figure of <code>{esc(table.name)}</code> could not be drawn: '
+                 f"{esc(type(e).__name__)}: {esc(e)}</p>")
+        return
+    page.add(f'<figure><a href="{url(rel + ".svg")}">'
+             f"{img_tag(rel + '.png', stem + '.png', f'{table.name}: the paper against ours', 'paper-figure')}</a>"
+             f"<figcaption>{esc(table.name)}: the paper's speedup (hatched) beside ours (solid) over the same "
+             f"baseline, {len(pairs)} pair(s) from <code>{esc(inp.rel)}</code> &middot; "
+             f'<a href="{url(rel + ".svg")}">SVG</a></figcaption></figure>')
+
+
+def fastest_section(page, inputs, out_dir, failures):
+    """The fastest exact technique per view and driver: for each driver the run with the most views that
+    rank two or more exact techniques (then the most cases): its figure and its table. Returns 1 when
+    drawn, else 0."""
+    best = {}
+    for inp in inputs:
+        entries = plot.fastest_table([inp.run])
+        if not entries:
+            continue
+        driver = entries[0]["driver"]
+        score = (len(entries), sum(len(e["ranked"]["total"]) for e in entries))
+        if driver not in best or score > best[driver][0]:
+            best[driver] = (score, inp, entries)
+    if not best:
+        return 0
+    page.section(2, "fastest", "Fastest technique per view")
+    chosen = [best[d] for d in sorted(best)]
+    entries = [e for _, _, es in chosen for e in es]
+    page.add("<p>Per driver, the run with the most views that rank two or more exact techniques (" +
+             ", ".join(f"<code>{esc(inp.rel)}</code>" for _, inp, _ in chosen) + "): every exact technique of each "
+             "view, by the median of its resolve pass and of its total. Approximate techniques (an error above "
+             "the floor, or an approximate family) are left out; see each run's figure for error against time."
+             "</p>")
+    rel = os.path.join("figures", "fastest")
+    stem = os.path.join(out_dir, rel)
+    os.makedirs(os.path.dirname(stem), exist_ok=True)
+    print("report.py: figure: fastest technique per view", flush=True)
+    try:
+        plot.save(plot.fastest_figure(entries), stem)
+        page.add(f'<figure><a href="{url(rel + ".svg")}">'
+                 f"{img_tag(rel + '.png', stem + '.png', 'fastest exact technique per view', 'summary-figure')}</a>"
+                 f'<figcaption>time / the view\'s fastest exact technique, per pass and driver &middot; '
+                 f'<a href="{url(rel + ".svg")}">SVG</a></figcaption></figure>')
+    except Exception as e:  # a figure bug on odd data must not cost the rest of the page
+        plot.plt.close("all")
+        failures.append(f"fastest: {type(e).__name__}: {e}")
+        page.add(f'<p class="note">The fastest-technique figure could not be drawn: {esc(type(e).__name__)}: '
+                 f"{esc(e)}</p>")
+    page.add(html_table(plot.FASTEST_HEADER, [[esc(c) for c in line] for line in plot.fastest_lines(entries)],
+                        numeric=[False, False, False, False, True, False, True]))
+    return 1
+
+
+def tables_section(page, inputs, paper_dir, shown_paper_dir, out_dir=None, failures=None):
+    """The paper tables with any of our rows, one per (table, run) with rows, and beside each the figure
+    of the paper's speedups against ours (the run opened by default); returns how many tables."""
+    failures = [] if failures is None else failures
     page.section(2, "tables", "Paper tables")
     if not os.path.isdir(paper_dir):
         page.add(f'<p class="note">The papers\' tables are not here: no folder <code>{esc(shown_paper_dir)}'
@@ -590,11 +674,15 @@ def tables_section(page, inputs, paper_dir, shown_paper_dir):
             continue
         count += 1
         page.section(3, "table-" + slug(table.name), table.title)
-        best = max(m for m, _, _ in found)
-        opened = False
+        # Open by default: the run of the preset that reruns the paper's table (knowles2014, not its quick
+        # variant), else the one with most rows matched.
+        def rank(item):
+            matched, inp, _ = item
+            presets = {r.get("preset", "") for r in inp.run.rows}
+            return (bool(presets & set(table.presets)), matched)
+        default = max(found, key=rank)
         for matched, inp, layout in found:
-            is_open = matched == best and not opened
-            opened = opened or is_open
+            is_open = (matched, inp) == default[:2]
             notes = "".join(f"<p class='muted'>{md_inline(n)}</p>" for n in layout.notes)
             # The rows with ours first; the paper's other rows stay one click away, in the paper's order.
             mine = [[esc(c) for c in row] for row, ok in zip(layout.cells, layout.ours_found) if ok]
@@ -605,6 +693,7 @@ def tables_section(page, inputs, paper_dir, shown_paper_dir):
             page.add(f'<details class="table-run"{" open" if is_open else ""}><summary>ours from '
                      f"<code>{esc(inp.rel)}</code>: {matched} of {len(layout.cells)} rows matched</summary>"
                      f"{notes}{html_table(layout.header, mine, layout.numeric)}{others}</details>")
+        paper_figure(page, table, default[1], paper_rows, out_dir, failures)
     if not count:
         page.add("<p class='muted'>No run has rows that a paper table compares with.</p>")
     return count
@@ -1113,13 +1202,15 @@ def build(args):
     page.section(2, "files", "Results by file")
     failures = []
     n_figures = sum(run_block(page, inp, f, shared, args.out_dir, failures) for inp, f in zip(inputs, facts))
-    n_tables = tables_section(page, inputs, paper_dir, args.paper or shown_path(paper_dir))
+    n_fastest = fastest_section(page, inputs, args.out_dir, failures)
+    n_tables = tables_section(page, inputs, paper_dir, args.paper or shown_path(paper_dir), args.out_dir, failures)
     n_images = gallery_section(page, images_dir, args.out_dir) if images_dir else 0
     with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8", newline="\n") as f:
         f.write(page.render())
     counts = [plural(len(inputs), "run"), plural(n_figures, "figure"), plural(n_tables, "paper table"),
+              "a fastest-technique summary" if n_fastest else None,
               plural(n_images, "image")] + ([plural(len(skipped), "CSV") + " left out"] if skipped else [])
-    print(f"report.py: {os.path.join(args.out_dir, 'index.html')}: {', '.join(counts)}")
+    print(f"report.py: {os.path.join(args.out_dir, 'index.html')}: {', '.join(c for c in counts if c)}")
     for fail in failures:
         print(f"report.py: figure not drawn: {fail}", file=sys.stderr)
     return 1 if failures else 0

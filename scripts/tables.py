@@ -508,6 +508,34 @@ def render_markdown(table, rows, ours, paper_rows):
     return "\n".join(lines) + "\n"
 
 
+def figure_hardware(table, ours, paper_rows):
+    """(the paper's hardware, ours) as a figure's title names them: 'NVIDIA GTX Titan, 1920x1080' and
+    'llvmpipe (...) via egl, 128x128'. For plot.py's paper_figure()."""
+    mine = [r for r in paper_rows if r["source"] == table.source and r["table"] == table.table]
+    gpu = next((r["gpu"] for r in mine if r.get("gpu")), "?")
+    res = next((r["resolution"] for r in mine if r.get("resolution")), "")
+    exp = TECHNIQUES.get(table.baseline.format("16"), TECHNIQUES.get("BASE-IS")).experiment
+    if table.kind == "lines":
+        exp = "lines"
+    return gpu + (f", {res}" if res else ""), ours.scoped(table.presets).describe(exp) or "\u2014"
+
+
+def figure_pairs(table, rows):
+    """The rows of build_rows() that have both the paper's speedup and ours, as (case, technique, metric,
+    paper speedup, our speedup): what plot.py's paper_figure() draws. The baseline's own rows (1x on both
+    sides by definition) and the lines table (frame rates, not speedups) give none."""
+    if table.kind == "lines":
+        return []
+    out = []
+    for r in rows:
+        if r["paper_speedup"] is None or r["ours_speedup"] is None or r["technique"] == baseline_name(table, r["technique"]):
+            continue
+        case = " ".join(str(x) for x in (r["scene"] if r["scene"] not in GENERIC_SCENES else "", r["view"],
+                                          f"size {r['size']}" if r["size"] else "") if x)
+        out.append((case, r["technique"], r["metric"], r["paper_speedup"], r["ours_speedup"]))
+    return out
+
+
 CSV_COLUMNS = ["table", "scene", "view", "size", "technique", "metric", "paper", "unit", "paper_speedup",
                "ours_ms", "ours_speedup", "ours_cases"]
 

@@ -11,10 +11,10 @@ PYTHON = "/usr/bin/python3"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
-def run_script(name, *args, check=True):
+def run_script(name, *args, check=True, timeout=300):
     env = dict(os.environ, MPLBACKEND="Agg")
     proc = subprocess.run([PYTHON, os.path.join(SCRIPTS, name)] + [str(a) for a in args], env=env,
-                          capture_output=True, text=True, timeout=300)
+                          capture_output=True, text=True, timeout=timeout)
     if check and proc.returncode != 0:
         raise AssertionError(f"{name} {' '.join(map(str, args))} exited {proc.returncode}:\n"
                              f"{proc.stdout}\n{proc.stderr}")

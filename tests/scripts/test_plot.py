@@ -1,10 +1,15 @@
 """plot.py: a figure per experiment, valid rows only, invalid ones named; the registry's figures and the
-generic fallback on synthetic runs, and the occupancy staircase on a real quick run when OITBENCH_EXE is set."""
+generic fallback on synthetic runs, and the occupancy staircase on a real quick run when OITBENCH_EXE is set.
+(The committed reference CSVs: test_reference_figures.py.)"""
 import os
+import re
 import unittest
 
 import synthetic as syn
 from support import TempDirTest, oitbench_exe, run_oitbench, run_script
+
+COUNT_LINE = re.compile(r"^(?P<label>\S+): (?P<exp>\S+): (?P<valid>\d+) valid rows, (?P<bad>\d+) not plotted; "
+                        r"(?P<drawn>\d+) drawn, (?P<noted>\d+) named in the note -> ", re.M)
 
 
 class PlotSynthetic(TempDirTest):
@@ -89,6 +94,53 @@ class PlotSynthetic(TempDirTest):
         proc = run_script("plot.py", csv_path, "-o", self.path("fig"))
         self.assertPng(self.path("fig/sort.png"))
         self.assertIn("link failed", proc.stdout)
+
+
+    def test_a_valid_row_no_panel_draws_is_named_and_counted(self):
+        rows = [r for r in syn.oit_rows() if r.get("status") != "timeout"]
+        # A pass of a case whose total row is missing: no bar can carry it.
+        rows.append({"experiment": "oit", "variant": "orphan", "pass": "capture", "scene": "planes", "max_frags": 64,
+                     "median_ms": 3.0})
+        path = syn.write_summary(self.path("orphan.csv"), rows, metrics=["rmse", "max_abs_error"],
+                                 params=["scene", "max_frags"])
+        proc = run_script("plot.py", path, "-o", self.path("fig"))
+        m = COUNT_LINE.search(proc.stdout)
+        self.assertEqual((m["exp"], m["valid"], m["drawn"], m["noted"]), ("oit", str(len(rows)), str(len(rows) - 1), "1"),
+                         proc.stdout)
+        self.assertIn("orphan scene=planes max_frags=64 pass=capture: valid, not drawn", proc.stdout)
+        with open(self.path("fig/oit.svg"), encoding="utf-8") as f:
+            self.assertIn("valid rows not drawn", f.read())
+
+    def test_cases_that_differ_only_in_capture_get_bars_of_their_own(self):
+        rows = []
+        for capture, ms in (("PPLL", 10.0), ("PPPA", 20.0)):
+            for p, share in (("capture", 0.4), ("resolve", 0.6), ("total", 1.0)):
+                rows.append({"experiment": "oit", "variant": "", "technique": "BASE-IMS", "capture": capture,
+                             "scene": "planes", "view": "fwd", "pass": p, "median_ms": ms * share})
+        path = syn.write_summary(self.path("cap.csv"), rows, params=["technique", "capture", "scene", "view"])
+        proc = run_script("plot.py", path, "-o", self.path("fig"))
+        self.assertRegex(proc.stdout, r"oit: 6 valid rows, 0 not plotted; 6 drawn, 0 named")
+        with open(self.path("fig/oit.svg"), encoding="utf-8") as f:
+            svg = f.read()
+        self.assertIn("BASE-IMS capture=PPLL", svg)
+        self.assertIn("BASE-IMS capture=PPPA", svg)
+
+    def test_the_sort_figure_splits_by_family_with_at_most_eight_curves_a_panel(self):
+        rows = []
+        variants = ["insertion-a", "insertion-b", "insertion-c", "insertion-d", "insertion-e", "bubble", "bubble-early",
+                    "bitonic", "odd-even-merge", "shell", "rbs", "newsort-x"]
+        for v in variants:
+            for memory in ("local", "registers"):
+                for n in (4, 8, 16):
+                    rows.append({"experiment": "sort", "variant": v, "pass": "total", "n": n, "memory": memory,
+                                 "median_ms": n * (1 + len(v) / 10)})
+        path = syn.write_summary(self.path("s.csv"), rows, params=["n", "memory"])
+        run_script("plot.py", path, "-o", self.path("fig"))
+        with open(self.path("fig/sort.svg"), encoding="utf-8") as f:
+            svg = f.read()
+        for title in ("insertion, part 1/2", "insertion, part 2/2", "bubble", "merge networks", "shell", "rbs",
+                      "newsort", "n (fragments per pixel)"):
+            self.assertIn(title, svg)
 
 
 @unittest.skipUnless(oitbench_exe(), "OITBENCH_EXE not set (ctest sets it)")
