@@ -246,8 +246,9 @@ int run_cli(int argc, char** argv) {
         throw UsageError(e.what());
       }
       if (copt.device != 0 && copt.backend != "egl-device")
-        throw UsageError("--device " + std::to_string(copt.device) + " applies to --backend egl-device only (this is --backend " +
-                         copt.backend + "); see: oitbench info --drivers");
+        throw UsageError("--device " + std::to_string(copt.device) +
+                         " applies to --backend egl-device only (this is --backend " + copt.backend +
+                         "); see: oitbench info --drivers");
     }
     if (*list) return list_command(registry, lopt, copt);
     if (*info) return info_command(copt);
@@ -256,9 +257,9 @@ int run_cli(int argc, char** argv) {
     check_output_file(ropt.out, "--out");
     if (!ropt.raw.empty()) {
       check_output_file(ropt.raw, "--raw");
-      if (ropt.raw == ropt.out || (ropt.out != "-" && std::filesystem::exists(ropt.out) &&
-                                   std::filesystem::exists(ropt.raw) &&
-                                   std::filesystem::equivalent(ropt.out, ropt.raw)))
+      if (ropt.raw == ropt.out ||
+          (ropt.out != "-" && std::filesystem::exists(ropt.out) && std::filesystem::exists(ropt.raw) &&
+           std::filesystem::equivalent(ropt.out, ropt.raw)))
         throw UsageError("--raw and --out name the same file (" + ropt.raw + "); give two files");
     }
     if (*render) {

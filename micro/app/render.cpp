@@ -36,10 +36,11 @@ FileState state_of(const std::string& path) {
 int render_command(Registry& registry, const RenderCommand& c) {
   // --out names a file: never a folder (whose files would become hidden ".png", ".csv"), never a device.
   const std::string name = std::filesystem::path(c.out).filename().string();
-  if (c.out.empty() || c.out.back() == '/' || std::filesystem::is_directory(c.out) || name == ".png" ||
-      name.empty() || name == "." || name == "..")
-    throw UsageError("--out " + c.out + ": names a folder; give an image file name, e.g. " +
-                     (c.out.empty() ? std::string("render.png") : (std::filesystem::path(c.out) / "render.png").string()));
+  if (c.out.empty() || c.out.back() == '/' || std::filesystem::is_directory(c.out) || name == ".png" || name.empty() ||
+      name == "." || name == "..")
+    throw UsageError(
+        "--out " + c.out + ": names a folder; give an image file name, e.g. " +
+        (c.out.empty() ? std::string("render.png") : (std::filesystem::path(c.out) / "render.png").string()));
   std::string stem = c.out.ends_with(".png") ? c.out.substr(0, c.out.size() - 4) : c.out;
   std::map<std::string, FileState> before;
   for (const char* suffix : kSuffixes) {

@@ -8,11 +8,11 @@
 
 #include <cerrno>
 #include <cstdio>
-#include <filesystem>
 #include <cstdlib>
 #include <cstring>
-#include <stdexcept>
+#include <filesystem>
 #include <optional>
+#include <stdexcept>
 
 #include "core/interrupt.hpp"
 
@@ -142,8 +142,8 @@ void Watchdog::watch() {
     }
     const double quiet = seconds_since(last_beat_);
     if (heartbeat_lines_ && quiet >= kHeartbeatSeconds && seconds_since(last_line) >= kHeartbeatSeconds) {
-      std::fprintf(stderr, "\noitbench: still running '%s': %.0f s since the last repetition ended\n",
-                   current_.c_str(), quiet);
+      std::fprintf(stderr, "\noitbench: still running '%s': %.0f s since the last repetition ended\n", current_.c_str(),
+                   quiet);
       std::fflush(stderr);
       last_line = Clock::now();
     }

@@ -193,8 +193,8 @@ std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
   double product = 1;
   for (const auto& spec : specs) product *= static_cast<double>(std::max<size_t>(values_of(spec).size(), 1));
   if (product > static_cast<double>(max_cases))
-    throw UsageError("the parameter grid has " + fmt_num(product) + " cases, more than " +
-                     std::to_string(max_cases) + "; narrow a --set list, or raise --max-cases");
+    throw UsageError("the parameter grid has " + fmt_num(product) + " cases, more than " + std::to_string(max_cases) +
+                     "; narrow a --set list, or raise --max-cases");
   std::vector<ParamSet> out{ParamSet{}};
   for (const auto& spec : specs) {
     const auto& values = values_of(spec);

@@ -41,8 +41,9 @@ std::string to_value(const nlohmann::json& v, const PresetText& at, const std::v
     s << v.get<double>();
     return s.str();
   }
-  throw at.error(keys, "expected a string or a number, got " + std::string(v.type_name()) +
-                           (v.is_boolean() ? " (write a parameter's value as the command line would, e.g. \"1\")" : ""));
+  throw at.error(keys,
+                 "expected a string or a number, got " + std::string(v.type_name()) +
+                     (v.is_boolean() ? " (write a parameter's value as the command line would, e.g. \"1\")" : ""));
 }
 
 Resolution resolution_value(const nlohmann::json& v, const PresetText& at, const std::vector<std::string>& keys) {

@@ -129,8 +129,8 @@ class Runner {
       // Known only now that the context exists; without one (an unsupported driver) the entry's own sizes.
       const bool hardware = gl_info_known_ && !gl_.is_software_renderer();
       RunSize size = resolve_run_size(r, *e, opt_, hardware);
-      plan.push_back(
-          {e, size.resolution, size.reps, size.warmup, expand_grid(registry_.params_of(*e), r.overrides, quick, opt_.max_cases)});
+      plan.push_back({e, size.resolution, size.reps, size.warmup,
+                      expand_grid(registry_.params_of(*e), r.overrides, quick, opt_.max_cases)});
     }
     return plan;
   }
@@ -421,7 +421,8 @@ namespace {
 // One request against the registry; returns its number of cases.
 size_t check_request(const Registry& registry, const RunRequest& r, bool quick, size_t max_cases) {
   const Experiment* e = registry.find(r.experiment);
-  if (!e) throw UsageError("unknown experiment '" + r.experiment + "'; valid experiments: " + registry.names() + ", all");
+  if (!e)
+    throw UsageError("unknown experiment '" + r.experiment + "'; valid experiments: " + registry.names() + ", all");
   auto specs = registry.params_of(*e);
   for (const auto& [name, values] : r.overrides) {
     auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });
@@ -443,8 +444,7 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
 }
 }  // namespace
 
-void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick,
-                    size_t max_cases) {
+void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick, size_t max_cases) {
   if (requests.empty()) throw UsageError("nothing to run; experiments: " + registry.names());
   size_t total = 0;
   for (const auto& r : requests) {

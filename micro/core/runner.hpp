@@ -42,8 +42,8 @@ struct RunOptions {
   std::string timer = "auto";  // auto | cpu | gpu
   bool sync_passes = false;    // glFinish around every pass on hardware drivers too (always on software ones)
   bool interleave = true;
-  std::string isolate = "auto";  // auto (hang-prone experiments) | always | never
-  double timeout_s = 600;        // per case, watchdog
+  std::string isolate = "auto";      // auto (hang-prone experiments) | always | never
+  double timeout_s = 600;            // per case, watchdog
   size_t max_cases = kMaxGridCases;  // --max-cases: the grid's bound, checked before anything is built
   bool progress = true;
   std::string preset_name;      // recorded in each row

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <memory>
 #include <set>
-#include <tuple>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/registry.hpp"

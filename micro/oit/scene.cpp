@@ -4,12 +4,12 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <cmath>
-#include <set>
 #include <assimp/Importer.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <set>
 #include <sstream>
 
 #include "core/data_dirs.hpp"
@@ -110,8 +110,8 @@ class Node {
 const std::vector<std::string> kGenerators = {"planes", "hairball", "strands", "smoke", "model"};
 // Generator parameters that are counts (whole numbers), and sizes that must be above 0.
 const std::set<std::string> kCountKeys = {"count", "strands", "segments", "sides", "per_strand", "seed", "grid"};
-const std::set<std::string> kPositiveKeys = {"half_size", "segment_length", "tube_radius", "radius", "head_radius",
-                                             "size"};
+const std::set<std::string> kPositiveKeys = {"half_size", "segment_length", "tube_radius",
+                                             "radius",    "head_radius",    "size"};
 
 SubmitOrder parse_order(const Node& n) {
   auto s = n.str();
@@ -358,13 +358,14 @@ std::string approx_count(double x) {
 }
 
 // Throws SceneError naming the scene file, the object and the parameters behind its size.
-void check_mesh_size(const MeshEstimate& total, const SceneDesc& scene, size_t object, const std::string& why) {
+void check_mesh_size(const MeshEstimate& total, const SceneDesc& scene, size_t object, const std::string& why,
+                     unsigned long long max_bytes) {
   const double index_limit = 4294967295.0;  // indices are 32-bit
-  if (total.bytes() <= static_cast<double>(kMaxMeshBytes) && total.vertices < index_limit) return;
+  if (total.bytes() <= static_cast<double>(max_bytes) && total.vertices < index_limit) return;
   throw SceneError(scene.path + ": /objects/" + std::to_string(object) + " (" + scene.objects[object].generator +
                    "): " + why + " makes the mesh about " + approx_count(total.primitives) + " primitives, " +
                    approx_count(total.vertices) + " vertices, " + approx_count(total.bytes() / (1 << 30)) +
-                   " GiB; the most oitbench builds is " + std::to_string(kMaxMeshBytes >> 30) +
+                   " GiB; the most oitbench builds is " + approx_count(static_cast<double>(max_bytes) / (1 << 30)) +
                    " GiB and 2^32 vertices: lower the parameters (or use \"detail\": small)");
 }
 
@@ -409,7 +410,7 @@ glm::vec3 per_axis(const json& p, const char* key, float fallback) {
 // `opaque_unless_translucent`, every model material is opaque except those the file makes
 // translucent (model_opacity) or alpha_by_material names: the house's walls and its glass.
 void gen_model(Builder& b, const json& p, const Material& m, const std::string& file, const SceneDesc& scene,
-               size_t object, MeshEstimate& total) {
+               size_t object, MeshEstimate& total, unsigned long long max_bytes) {
   try {
     check_input_file(file, "model file", kMaxModelFileBytes);
   } catch (const FileError& e) {
@@ -458,7 +459,8 @@ void gen_model(Builder& b, const json& p, const Material& m, const std::string& 
     total.primitives += one.primitives * copies;
     check_mesh_size(total, scene, object,
                     file + " (" + approx_count(one.primitives) + " triangles) x grid " + std::to_string(grid.x) +
-                        " x " + std::to_string(grid.y) + " x " + std::to_string(grid.z));
+                        " x " + std::to_string(grid.y) + " x " + std::to_string(grid.z),
+                    max_bytes);
   }
   glm::vec3 spacing = per_axis(p, "spacing", 1.0f);
   float mix = static_cast<float>(param(p, "colour_mix", 0.5));
@@ -728,7 +730,7 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
           if (pk == "grid")
             for (size_t e = 0; e < 3; ++e) v.element(e).integer(1, 1e4);
         } else if (pk == "lowest_root") {
-          v.number(-1, 1);
+          v.number(-1, 0.9);                // roots are drawn until one lies above it: near 1 none ever does
         } else if (kCountKeys.count(pk)) {  // counts: whole numbers, never truncated
           double x = v.integer(pk == "grid" ? 1 : 0, 1e7);
           if (pk == "sides" && obj.generator == "strands" && x > 0 && x < 3)
@@ -806,7 +808,8 @@ SceneDesc load_scene(const std::string& name_or_path) {
   }
 }
 
-Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque) {
+Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque,
+                unsigned long long max_bytes) {
   std::vector<json> params;
   for (const auto& o : scene.objects) {
     json p = o.params;
@@ -821,7 +824,7 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
     std::string why;
     MeshEstimate e = estimate_object(scene.objects[i], params[i], why);
     total = {total.vertices + e.vertices, total.indices + e.indices, total.primitives + e.primitives};
-    check_mesh_size(total, scene, i, why);
+    check_mesh_size(total, scene, i, why, max_bytes);
   }
   Builder b;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -836,7 +839,7 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
     else if (o.generator == "strands")
       gen_strands(b, p, m);
     else if (o.generator == "model")
-      gen_model(b, p, m, resolve_model(scene, o.file), scene, i, total);
+      gen_model(b, p, m, resolve_model(scene, o.file), scene, i, total, max_bytes);
     else
       gen_smoke(b, p, m, view);
   }
