@@ -64,7 +64,10 @@ std::string ParamSpec::allowed_text() const {
   }
   if (kind == Kind::Text) return "any text";
   std::string s = kind == Kind::Integer ? "integer" : "number";
-  if (lowest() > -1e300 || highest() < 1e300) s += " in [" + fmt_num(lowest()) + ", " + fmt_num(highest()) + "]";
+  auto bound = [&](double v) {  // an integer's bounds in full: 2147483647, not 2.14748e+09
+    return kind == Kind::Integer ? std::to_string(static_cast<long long>(v)) : fmt_num(v);
+  };
+  if (lowest() > -1e300 || highest() < 1e300) s += " in [" + bound(lowest()) + ", " + bound(highest()) + "]";
   return s;
 }
 

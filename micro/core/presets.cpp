@@ -98,8 +98,7 @@ Resolution parse_resolution(const std::string& text) {
   };
   Resolution r{side(m[1]), side(m[2])};
   if (r.width < 1 || r.height < 1 || r.width > kMaxResolutionSide || r.height > kMaxResolutionSide)
-    throw UsageError("resolution '" + text + "': each side must be in [1, " + std::to_string(kMaxResolutionSide) +
-                     "] (the driver's own limits are checked when the case runs)");
+    throw UsageError("resolution '" + text + "': each side must be in [1, " + std::to_string(kMaxResolutionSide) + "]");
   return r;
 }
 
