@@ -147,6 +147,7 @@ struct Running {
     err = dir / "stderr";
     std::vector<std::string> full = {OITBENCH_EXE};
     full.insert(full.end(), args.begin(), args.end());
+    std::fflush(stdout);  // the child's freopen would write this process's buffered output again
     pid = fork();
     if (pid == 0) {
       for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
