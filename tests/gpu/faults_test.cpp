@@ -334,5 +334,21 @@ TEST_F(RenderTargetLimits, PastTheLimitsIsUnavailableNamingTheLimit) {
   }
 }
 
+TEST(Faults, AResolutionTheDriverCannotAllocateIsUnsupportedNotAnError) {
+  // 12000x12000 RGBA32F is 2.3 GB: llvmpipe refuses the texture (the "about 11600^2"); a GPU with
+  // the memory runs it. Either way never an `error` row with a framebuffer status in decimal.
+  auto out = temp_dir("huge") / "h.csv";
+  auto r = run_oitbench({"run", "occupancy", "--set", "variant=dynamic", "--set", "size=1", "--resolution",
+                         "12000x12000", "--reps", "1", "--warmup", "0", "--out", out.string(), "--no-progress"},
+                        300);
+  auto rows = read_csv_rows(out);
+  ASSERT_EQ(rows.size(), 1u) << r.err;
+  EXPECT_NE(rows[0]["status"], "error") << rows[0]["reason"];
+  if (rows[0]["status"] == "unsupported") {
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_TRUE(contains(rows[0]["reason"], "render target 12000x12000")) << rows[0]["reason"];
+  }
+}
+
 }  // namespace
 }  // namespace oitbench::test
