@@ -34,6 +34,7 @@ import shutil
 import signal
 import struct
 import sys
+import time
 import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -171,18 +172,62 @@ def default_images_dir(paths):
     return candidate if os.path.isdir(candidate) else None
 
 
+# The files a page wrote into its folder, one relative path a line: all a later page there may remove.
+WRITTEN_LIST = ".report-files"
+
+
 def prepare_out_dir(out_dir):
-    """An empty or new folder, or a previous report or comparison page (whose generated parts are removed
-    first)."""
-    index = os.path.join(out_dir, "index.html")
+    """An empty or new folder, or a previous report or comparison page, whose files (those it listed in
+    WRITTEN_LIST) are removed first; anything else in the folder is left as it is. Returns the time the
+    new page starts writing (write_file_list lists what is written after it)."""
+    if os.path.exists(out_dir) and not os.path.isdir(out_dir):
+        raise oitcsv.ResultsError(f"{out_dir}: is a file, not a folder; give -o a new or empty folder "
+                                  "(report.py never writes over a file)")
     if os.path.isdir(out_dir) and os.listdir(out_dir):
         if generated_page(out_dir) is None:
             raise oitcsv.ResultsError(f"{out_dir}: not empty and not a previous report; give a new or empty "
                                       "folder with -o")
-        for sub in ("figures", "images"):
-            shutil.rmtree(os.path.join(out_dir, sub), ignore_errors=True)
-        os.remove(index)
+        remove_previous_page(out_dir)
     os.makedirs(out_dir, exist_ok=True)
+    return time.time()
+
+
+def remove_previous_page(out_dir):
+    """Removes the files the previous page listed as its own (only its index.html when it kept no list),
+    then the folders they leave empty; a file a user added stays."""
+    listed = os.path.join(out_dir, WRITTEN_LIST)
+    rels = ["index.html"]
+    if os.path.isfile(listed):
+        with open(listed, encoding="utf-8") as f:
+            rels = [line.rstrip("\n") for line in f if line.strip()]
+    root = os.path.realpath(out_dir)
+    folders = set()
+    for rel in rels:
+        path = os.path.realpath(os.path.join(out_dir, rel))
+        if os.path.isabs(rel) or not path.startswith(root + os.sep):
+            continue  # a list edited to point outside the folder: never followed
+        if os.path.isfile(path):
+            os.remove(path)
+            folders.add(os.path.dirname(path))
+    for folder in sorted(folders, key=len, reverse=True):
+        while folder.startswith(root + os.sep) and os.path.isdir(folder) and not os.listdir(folder):
+            os.rmdir(folder)
+            folder = os.path.dirname(folder)
+    if os.path.isfile(listed):
+        os.remove(listed)
+
+
+def write_file_list(out_dir, since):
+    """Lists every file in out_dir written since `since` (this page's) in WRITTEN_LIST."""
+    rels = []
+    for folder, _, files in os.walk(out_dir):
+        for name in files:
+            path = os.path.join(folder, name)
+            rel = os.path.relpath(path, out_dir)
+            if rel != WRITTEN_LIST and os.path.getmtime(path) >= since - 0.05:  # coarse file clocks
+                rels.append(rel)
+    with open(os.path.join(out_dir, WRITTEN_LIST), "w", encoding="utf-8", newline="\n") as f:
+        f.write("".join(r + "\n" for r in sorted(rels)))
 
 
 # -------------------------------------------------------------------------------------------- run facts
@@ -1129,7 +1174,7 @@ def build_compare(args):
     a, b = sides
     pairs = [Paired(name, sides, args) for name in sorted(set(a.presets) & set(b.presets))]
     only = [sorted(set(s.presets) - set(o.presets)) for s, o in ((a, b), (b, a))]
-    prepare_out_dir(args.out_dir)
+    since = prepare_out_dir(args.out_dir)
     page = Page(args.title or f"oitbench comparison: {b.label} against {a.label}",
                 meta={COMPARE_META: f"{b.label} against {a.label}"})
     for p in pairs:
@@ -1152,6 +1197,7 @@ def build_compare(args):
                      ", ".join(f"<code>{esc(n)}</code>" for n in names) + "</p>")
     with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8", newline="\n") as f:
         f.write(page.render())
+    write_file_list(args.out_dir, since)
     every = [c for p in pairs for c in p.comparisons]
     counts = [plural(len(pairs), "preset") + " compared", plural(len(every), "comparison"), plural(n_figures, "figure")]
     counts += [f"{len(n)} only in {s.label}" for s, n in zip(sides, only) if n]
@@ -1186,7 +1232,7 @@ def build(args):
         if out == inside or inside.startswith(out + os.sep):
             raise oitcsv.ResultsError(f"{args.out_dir}: the report would overwrite its own inputs ({p}); "
                                       "give -o a folder of its own (e.g. RESULTS/report)")
-    prepare_out_dir(args.out_dir)
+    since = prepare_out_dir(args.out_dir)
     title = args.title or f"oitbench report: {os.path.basename(base) or 'results'}"
     page = Page(title)
     facts = [Facts(inp.run) for inp in inputs]
@@ -1207,6 +1253,7 @@ def build(args):
     n_images = gallery_section(page, images_dir, args.out_dir) if images_dir else 0
     with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8", newline="\n") as f:
         f.write(page.render())
+    write_file_list(args.out_dir, since)
     counts = [plural(len(inputs), "run"), plural(n_figures, "figure"), plural(n_tables, "paper table"),
               "a fastest-technique summary" if n_fastest else None,
               plural(n_images, "image")] + ([plural(len(skipped), "CSV") + " left out"] if skipped else [])
@@ -1247,6 +1294,10 @@ def main(argv=None):
         ap.error("the following arguments are required: CSV_OR_DIR (or --compare A B)")
     elif args.labels:
         ap.error("--labels is for --compare")
+    if os.path.exists(args.out_dir) and not os.path.isdir(args.out_dir):
+        print(f"report.py: {args.out_dir}: is a file, not a folder; give -o a new or empty folder "
+              "(report.py never writes over a file)", file=sys.stderr)
+        return 2
     try:
         return build_compare(args) if args.compare else build(args)
     except oitcsv.ResultsError as e:

@@ -1,6 +1,7 @@
 #include "app/cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -8,6 +9,7 @@
 #include "app/commands.hpp"
 #include "backends/drivers.hpp"
 #include "core/csv.hpp"
+#include "core/files.hpp"
 #include "core/presets.hpp"
 #include "core/provenance.hpp"
 #include "core/runner.hpp"
@@ -20,11 +22,43 @@ using namespace app;
 
 namespace {
 
+constexpr double kMaxTimeoutSeconds = 604800;  // a week
+constexpr int kMaxDeviceIndex = 1023;
+
 // `oitbench --version` and `oitbench version`: the version, then the build options.
 std::string version_text() {
   std::string s = std::string("oitbench ") + version_string() + "\n" + build_options();
   while (!s.empty() && s.back() == '\n') s.pop_back();
   return s;
+}
+
+// --timeout: a finite number of seconds above 0 (CLI11's PositiveNumber lets "nan" through).
+CLI::Validator seconds_validator() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        size_t pos = 0;
+        try {
+          v = std::stod(text, &pos);
+        } catch (const std::exception&) {
+          pos = 0;
+        }
+        if (pos == 0 || pos != text.size() || !std::isfinite(v) || v <= 0 || v > kMaxTimeoutSeconds)
+          return "expected seconds above 0 and at most " + std::to_string(static_cast<int>(kMaxTimeoutSeconds)) +
+                 " (a week), got '" + text + "'";
+        return "";
+      },
+      "SECONDS");
+}
+
+// The first word that is neither an option nor a subcommand, where a subcommand is expected.
+std::string unknown_subcommand(int argc, char** argv, const CLI::App& app) {
+  if (argc < 2) return "";
+  std::string first = argv[1];
+  if (first.empty() || first[0] == '-') return "";
+  for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    if (sub->get_name() == first) return "";
+  return first;
 }
 
 constexpr const char* kExitCodes =
@@ -74,7 +108,7 @@ int run_cli(int argc, char** argv) {
     cmd->add_option("--backend", copt.backend, "Context backend: egl (surfaceless, default), egl-device, osmesa, glfw")
         ->check(CLI::IsMember(compiled_backends()));
     cmd->add_option("--device", copt.device, "EGL device index for --backend egl-device (see info)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, kMaxDeviceIndex));
     cmd->add_flag("--gl-debug", copt.debug, "Print KHR_debug messages to stderr");
     cmd->add_option("--driver", driver,
                     "GL driver: default (what the loader gives), llvmpipe, zink (GL on Vulkan on lavapipe), softpipe, "
@@ -126,7 +160,10 @@ int run_cli(int argc, char** argv) {
                   "Run cases in child processes under the watchdog: auto (hang-prone experiments), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
   run->add_option("--timeout", ropt.timeout_s, "Watchdog: seconds a case may take before it is killed (status timeout)")
-      ->check(CLI::PositiveNumber);
+      ->check(seconds_validator());
+  run->add_option("--max-cases", ropt.max_cases,
+                  "The most cases one run may have (default 100000), checked before anything is built")
+      ->check(CLI::Range(static_cast<size_t>(1), static_cast<size_t>(100000000)));
   run->add_flag("--no-progress", no_progress, "No progress line on stderr");
   run->add_option(
       "--shaders", ropt.shader_root,
@@ -167,7 +204,7 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   view->add_option("--set", v_opt.sets, "Other oit parameters, NAME=VALUE (e.g. nodes=8, block=16)")->take_all();
   view->add_option("--frames", v_opt.frames, "Render this many frames, then exit 0 (default: until Esc or closed)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 100000000));
   view->add_option("--screenshot", v_opt.screenshot,
                    "Save the last frame, overlay included, as this PNG (also P's file)");
   view->add_option("--keys", v_opt.keys,
@@ -182,6 +219,13 @@ int run_cli(int argc, char** argv) {
 
   auto* version = app.add_subcommand("version", "Print the version and the build options (like --version)");
 
+  if (auto word = unknown_subcommand(argc, argv, app); !word.empty()) {
+    std::fprintf(stderr,
+                 "oitbench: error: unknown subcommand '%s'; subcommands: list, info, run, render, view, version "
+                 "(see: oitbench --help)\n",
+                 word.c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -201,11 +245,23 @@ int run_cli(int argc, char** argv) {
       } catch (const BackendError& e) {
         throw UsageError(e.what());
       }
+      if (copt.device != 0 && copt.backend != "egl-device")
+        throw UsageError("--device " + std::to_string(copt.device) +
+                         " applies to --backend egl-device only (this is --backend " + copt.backend +
+                         "); see: oitbench info --drivers");
     }
     if (*list) return list_command(registry, lopt, copt);
     if (*info) return info_command(copt);
     if (*view) return viewer::run_viewer(registry, v_opt);
     ropt.context = copt;
+    check_output_file(ropt.out, "--out");
+    if (!ropt.raw.empty()) {
+      check_output_file(ropt.raw, "--raw");
+      if (ropt.raw == ropt.out ||
+          (ropt.out != "-" && std::filesystem::exists(ropt.out) && std::filesystem::exists(ropt.raw) &&
+           std::filesystem::equivalent(ropt.out, ropt.raw)))
+        throw UsageError("--raw and --out name the same file (" + ropt.raw + "); give two files");
+    }
     if (*render) {
       rn.options = ropt;
       return render_command(registry, rn);
@@ -220,6 +276,9 @@ int run_cli(int argc, char** argv) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 2;
   } catch (const CsvError& e) {
+    std::fprintf(stderr, "oitbench: error: %s\n", e.what());
+    return 2;
+  } catch (const FileError& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 2;
   } catch (const BackendError& e) {

@@ -7,11 +7,7 @@ namespace oitbench::app {
 int run_command(Registry& registry, RunCommand& c) {
   RunOptions& ropt = c.options;
   if (!c.resolution.empty()) ropt.resolution = parse_resolution(c.resolution);
-  std::map<std::string, std::vector<std::string>> overrides;
-  for (const auto& s : c.sets) {
-    auto [k, v] = parse_set_option(s);
-    overrides[k] = v;
-  }
+  const auto overrides = parse_set_options(c.sets);
   std::vector<RunRequest> requests;
   if (!c.preset.empty()) {
     if (!c.experiments.empty()) throw UsageError("give either --preset or experiment names, not both");

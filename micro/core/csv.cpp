@@ -1,13 +1,18 @@
 #include "core/csv.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
+
+#include "core/files.hpp"
 
 namespace oitbench {
 
@@ -89,42 +94,127 @@ void write_all(int fd, const std::string& s, const std::string& path) {
 }
 }  // namespace
 
-CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns)
+AppendAction csv_append_action(const std::string& head, unsigned long long size, char last_byte,
+                               const std::vector<std::string>& columns, const std::string& path,
+                               const std::string& option) {
+  if (size == 0) return AppendAction::WriteHeader;
+  const std::string where = option + " " + path + ": ";
+  const std::string keep = "; it is left as it is: write to a new file";
+  auto eol = head.find('\n');
+  std::string first = head.substr(0, eol);
+  if (!first.empty() && first.back() == '\r') first.pop_back();
+  if (first.empty())
+    throw CsvError(where + "the file's first line is empty, so it has no CSV header (" + std::to_string(size) +
+                   " bytes)" + keep);
+  if (eol == std::string::npos && size > head.size())
+    throw CsvError(where + "the file's first line is longer than " + std::to_string(kCsvHeadBytes) +
+                   " bytes: not a CSV header" + keep);
+  std::vector<std::string> header;
+  try {
+    auto parsed = csv_parse(first + "\n");
+    if (!parsed.empty()) header = parsed[0];
+  } catch (const CsvError&) {
+    throw CsvError(where + "the file's first line is not a CSV header (it ends inside a quoted field)" + keep);
+  }
+  if (header != columns) {
+    std::string diff;
+    for (size_t i = 0; i < std::max(header.size(), columns.size()); ++i) {
+      std::string a = i < header.size() ? header[i] : "(none)";
+      std::string b = i < columns.size() ? columns[i] : "(none)";
+      if (a != b) {
+        diff = "column " + std::to_string(i + 1) + " is '" + a + "' in the file but '" + b + "' in this run";
+        break;
+      }
+    }
+    throw CsvError(option + " " + path + " exists with a different header (" + diff +
+                   "); write to a new file or remove the old one");
+  }
+  if (last_byte == '\n') return AppendAction::Append;
+  // No final newline: repair it only when the last row is whole (its fields match the header).
+  if (size > head.size())
+    throw CsvError(where + "the file does not end with a newline, and it is too large (" + std::to_string(size) +
+                   " bytes) to check its last row" + keep);
+  std::vector<std::vector<std::string>> rows;
+  try {
+    rows = csv_parse(head);
+  } catch (const CsvError&) {
+    throw CsvError(where + "the file ends inside a quoted field (a row cut short)" + keep);
+  }
+  if (rows.size() < 2) return AppendAction::AppendAfterNewline;  // the header alone, without its newline
+  if (rows.back().size() != columns.size())
+    throw CsvError(where + "the file does not end with a newline and its last row has " +
+                   std::to_string(rows.back().size()) + " fields where the header has " +
+                   std::to_string(columns.size()) + " (a row cut short)" + keep);
+  return AppendAction::AppendAfterNewline;
+}
+
+namespace {
+// Holds an flock for its lifetime.
+class FileLock {
+ public:
+  explicit FileLock(int fd) : fd_(fd) {
+    while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
+    }
+  }
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+  ~FileLock() { ::flock(fd_, LOCK_UN); }
+
+ private:
+  int fd_;
+};
+}  // namespace
+
+CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns, const std::string& option)
     : path_(path), columns_(std::move(columns)) {
   if (path == "-") {
     fd_ = STDOUT_FILENO;
     write_all(fd_, csv_line(columns_), "stdout");
     return;
   }
-  std::ifstream existing(path);
-  bool append = false;
-  if (existing) {
-    std::string first;
-    std::getline(existing, first);
-    if (!first.empty()) {
-      auto parsed = csv_parse(first + "\n");
-      auto header = parsed.empty() ? std::vector<std::string>{} : parsed[0];
-      if (header != columns_) {
-        std::string diff;
-        for (size_t i = 0; i < std::max(header.size(), columns_.size()); ++i) {
-          std::string a = i < header.size() ? header[i] : "(none)";
-          std::string b = i < columns_.size() ? columns_[i] : "(none)";
-          if (a != b) {
-            diff = "column " + std::to_string(i + 1) + " is '" + a + "' in the file but '" + b + "' in this run";
-            break;
-          }
-        }
-        throw CsvError("--out " + path + " exists with a different header (" + diff +
-                       "); write to a new file or remove the old one");
-      }
-      append = true;
-    }
+  try {
+    check_output_file(path, option);
+  } catch (const FileError& e) {
+    throw CsvError(e.what());
   }
-  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw CsvError("cannot open " + path + " for writing: " + std::strerror(errno));
-  if (!append) {
-    if (::ftruncate(fd_, 0) != 0) throw CsvError("cannot truncate " + path);
-    write_all(fd_, csv_line(columns_), path);
+  // Never O_TRUNC: an existing file keeps every byte. O_NONBLOCK: a FIFO put there since the check.
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC | O_NONBLOCK, 0644);
+  if (fd_ < 0) throw CsvError(option + " " + path + ": cannot open for writing: " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    fd_ = -1;
+    throw CsvError(option + " " + path + ": is " + file_kind(st.st_mode) + ", not a regular file");
+  }
+  ::fcntl(fd_, F_SETFL, O_APPEND);
+  try {
+    // Runs that open the same new file at once: the first to hold the lock writes the header, the
+    // others find it there and append.
+    FileLock lock(fd_);
+    if (::fstat(fd_, &st) != 0) throw CsvError(option + " " + path + ": " + std::strerror(errno));
+    const auto size = static_cast<unsigned long long>(st.st_size);
+    std::string head(std::min<unsigned long long>(size, kCsvHeadBytes), '\0');
+    char last = '\n';
+    if (size > 0) {
+      ssize_t n = ::pread(fd_, head.data(), head.size(), 0);
+      if (n < 0 || ::pread(fd_, &last, 1, static_cast<off_t>(size - 1)) != 1)
+        throw CsvError(option + " " + path + ": cannot read the existing file: " + std::strerror(errno));
+      head.resize(static_cast<size_t>(n));
+    }
+    switch (csv_append_action(head, size, last, columns_, path, option)) {
+      case AppendAction::WriteHeader:
+        write_all(fd_, csv_line(columns_), path);
+        break;
+      case AppendAction::AppendAfterNewline:
+        write_all(fd_, "\n", path);
+        break;
+      case AppendAction::Append:
+        break;
+    }
+  } catch (...) {
+    ::close(fd_);
+    fd_ = -1;
+    throw;
   }
 }
 

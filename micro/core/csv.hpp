@@ -18,11 +18,24 @@ std::string csv_line(const std::vector<std::string>& fields);
 // Parses a whole CSV text (quoted fields, embedded commas, quotes and newlines).
 std::vector<std::vector<std::string>> csv_parse(const std::string& text);
 
+// What appending rows of `columns` to an existing file needs, judged from its first bytes `head` (up to
+// kCsvHeadBytes; the whole file when `size` is no larger) and its last byte: write the header (an
+// empty file), append, or append after adding the final newline the file lacks (only when its last
+// row is whole). Throws CsvError naming `option` and `path` for anything else: an empty first line,
+// another header, a last row cut short. Nothing is ever truncated.
+enum class AppendAction { WriteHeader, Append, AppendAfterNewline };
+inline constexpr size_t kCsvHeadBytes = 1 << 20;
+AppendAction csv_append_action(const std::string& head, unsigned long long size, char last_byte,
+                               const std::vector<std::string>& columns, const std::string& path,
+                               const std::string& option = "--out");
+
 class CsvWriter {
  public:
-  // Creates `path` with the header, or appends when it exists with the identical header;
-  // throws CsvError naming the first differing column otherwise. "-" writes to stdout.
-  CsvWriter(const std::string& path, std::vector<std::string> columns);
+  // Creates `path` with the header, or appends when it exists with the identical header (under an
+  // exclusive lock, so runs creating the same file at once write one header); throws CsvError naming
+  // `option` and the first differing column otherwise. "-" writes to stdout. A path that is not a
+  // regular file (a folder, /dev/null, /dev/full) is refused.
+  CsvWriter(const std::string& path, std::vector<std::string> columns, const std::string& option = "--out");
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
   ~CsvWriter();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -18,8 +19,10 @@ bool parse_number(const std::string& v, bool integer, double& out) {
   try {
     size_t pos = 0;
     if (integer) {
-      long long x = std::stoll(v, &pos);
+      long long x = 0;
+      if (!parse_exact_integer(v, x)) return false;
       out = static_cast<double>(x);
+      pos = v.size();
     } else {
       out = std::stod(v, &pos);
     }
@@ -30,6 +33,29 @@ bool parse_number(const std::string& v, bool integer, double& out) {
 }
 }  // namespace
 
+bool parse_exact_integer(const std::string& v, long long& out) {
+  if (v.empty() || v.size() > 24) return false;
+  size_t i = v[0] == '-' || v[0] == '+' ? 1 : 0;
+  if (i == v.size() || v.find_first_not_of("0123456789", i) != std::string::npos) return false;
+  try {
+    size_t pos = 0;
+    long long x = std::stoll(v, &pos);
+    if (pos != v.size() || x > kMaxExactInteger || x < -kMaxExactInteger) return false;
+    out = x;
+    return true;
+  } catch (const std::exception&) {  // past long long
+    return false;
+  }
+}
+
+// An integer parameter without bounds of its own lands in an int: its range is the int's.
+double ParamSpec::lowest() const {
+  return kind == Kind::Integer && min <= -1e300 ? static_cast<double>(std::numeric_limits<int>::min()) : min;
+}
+double ParamSpec::highest() const {
+  return kind == Kind::Integer && max >= 1e300 ? static_cast<double>(std::numeric_limits<int>::max()) : max;
+}
+
 std::string ParamSpec::allowed_text() const {
   if (!allowed.empty()) {
     std::string s;
@@ -38,7 +64,10 @@ std::string ParamSpec::allowed_text() const {
   }
   if (kind == Kind::Text) return "any text";
   std::string s = kind == Kind::Integer ? "integer" : "number";
-  if (min > -1e300 || max < 1e300) s += " in [" + fmt_num(min) + ", " + fmt_num(max) + "]";
+  auto bound = [&](double v) {  // an integer's bounds in full: 2147483647, not 2.14748e+09
+    return kind == Kind::Integer ? std::to_string(static_cast<long long>(v)) : fmt_num(v);
+  };
+  if (lowest() > -1e300 || highest() < 1e300) s += " in [" + bound(lowest()) + ", " + bound(highest()) + "]";
   return s;
 }
 
@@ -51,7 +80,7 @@ void ParamSpec::check(const std::string& value, const std::string& experiment) c
   }
   if (kind == Kind::Text) return;
   double v = 0;
-  if (!parse_number(value, kind == Kind::Integer, v) || v < min || v > max)
+  if (!parse_number(value, kind == Kind::Integer, v) || v < lowest() || v > highest())
     throw UsageError("experiment '" + experiment + "': invalid value '" + value + "' for parameter '" + name +
                      "'; expected " + allowed_text());
 }
@@ -116,25 +145,49 @@ std::pair<std::string, std::vector<std::string>> parse_set_option(const std::str
   while (std::getline(ss, item, ',')) {
     auto dots = item.find("..");
     if (dots != std::string::npos) {
-      double a = 0, b = 0, step = 1;
+      long long a = 0, b = 0, step = 1;
       std::string rest = item.substr(dots + 2);
       auto colon = rest.find(':');
-      bool ok = parse_number(item.substr(0, dots), true, a) && parse_number(rest.substr(0, colon), true, b) &&
-                (colon == std::string::npos || parse_number(rest.substr(colon + 1), true, step));
+      bool ok = parse_exact_integer(item.substr(0, dots), a) && parse_exact_integer(rest.substr(0, colon), b) &&
+                (colon == std::string::npos || parse_exact_integer(rest.substr(colon + 1), step));
       if (!ok || step <= 0 || b < a)
-        throw UsageError("--set " + name + ": bad range '" + item + "' (expected A..B or A..B:STEP with A<=B)");
-      if ((b - a) / step > 100000) throw UsageError("--set " + name + ": range '" + item + "' has too many values");
-      for (double x = a; x <= b; x += step) values.push_back(std::to_string(static_cast<long long>(x)));
+        throw UsageError("--set " + name + ": bad range '" + item +
+                         "' (expected A..B or A..B:STEP with integers A<=B and STEP>0, each of magnitude at most "
+                         "2^53 = " +
+                         std::to_string(kMaxExactInteger) + ")");
+      // |a|, |b| <= 2^53: the difference cannot overflow, and the count is exact.
+      const long long count = (b - a) / step + 1;
+      if (count > static_cast<long long>(kMaxRangeValues) ||
+          values.size() + static_cast<size_t>(count) > kMaxRangeValues)
+        throw UsageError("--set " + name + ": range '" + item + "' has " + std::to_string(count) +
+                         " values; a --set list may have at most " + std::to_string(kMaxRangeValues));
+      for (long long k = 0; k < count; ++k) values.push_back(std::to_string(a + k * step));
     } else if (!item.empty()) {
       values.push_back(item);
     }
+    if (values.size() > kMaxRangeValues)
+      throw UsageError("--set " + name + ": more than " + std::to_string(kMaxRangeValues) + " values");
   }
   if (values.empty()) throw UsageError("--set " + name + ": no values given");
   return {name, values};
 }
 
+std::map<std::string, std::vector<std::string>> parse_set_options(const std::vector<std::string>& texts,
+                                                                  const std::string& option) {
+  std::map<std::string, std::vector<std::string>> out;
+  for (const auto& t : texts) {
+    auto [name, values] = parse_set_option(t);
+    if (out.count(name))
+      throw UsageError(option + " " + name + " is given twice; give one list instead (" + option + " " + name +
+                       "=A,B,...)");
+    out[name] = std::move(values);
+  }
+  return out;
+}
+
 std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
-                                  const std::map<std::string, std::vector<std::string>>& overrides, bool quick) {
+                                  const std::map<std::string, std::vector<std::string>>& overrides, bool quick,
+                                  size_t max_cases) {
   auto values_of = [&](const ParamSpec& spec) -> const std::vector<std::string>& {
     auto it = overrides.find(spec.name);
     return it != overrides.end() ? it->second : (quick && !spec.quick.empty()) ? spec.quick : spec.defaults;
@@ -142,9 +195,9 @@ std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
   // Bound the work before building it: the product of the value counts (scoping only shrinks it).
   double product = 1;
   for (const auto& spec : specs) product *= static_cast<double>(std::max<size_t>(values_of(spec).size(), 1));
-  if (product > static_cast<double>(kMaxGridCases))
-    throw UsageError("the parameter grid has " + fmt_num(product) + " cases, more than " +
-                     std::to_string(kMaxGridCases) + "; narrow a --set list");
+  if (product > static_cast<double>(max_cases))
+    throw UsageError("the parameter grid has " + fmt_num(product) + " cases, more than " + std::to_string(max_cases) +
+                     "; narrow a --set list, or raise --max-cases");
   std::vector<ParamSet> out{ParamSet{}};
   for (const auto& spec : specs) {
     const auto& values = values_of(spec);

@@ -45,6 +45,9 @@ struct ParamSpec {
   // Throws UsageError naming the parameter and listing the valid values.
   void check(const std::string& value, const std::string& experiment) const;
   std::string allowed_text() const;  // "a|b|c" or "integer in [1, 4096]"
+  // The bounds check() applies: min and max, within an int's range for an integer without its own.
+  double lowest() const;
+  double highest() const;
 };
 
 // One case: values in the experiment's parameter order.
@@ -70,15 +73,28 @@ class ParamSet {
   std::set<std::string> unused_;
 };
 
+// Integers the command line takes: at most 2^53 in magnitude (exact as doubles too).
+inline constexpr long long kMaxExactInteger = 9007199254740992LL;
+// Values one --set list may expand to (ranges included).
+inline constexpr size_t kMaxRangeValues = 100000;
+// A decimal integer ("-12", "+7"), every character used, |value| <= kMaxExactInteger.
+bool parse_exact_integer(const std::string& text, long long& out);
+
 // Splits "name=v1,v2,..." (with integer ranges "a..b" and "a..b:step" expanded); throws UsageError.
 std::pair<std::string, std::vector<std::string>> parse_set_option(const std::string& text);
+// Every --set of a command line, by name; a parameter set twice is a UsageError (it would silently keep
+// one of them). `option` names the option in messages.
+std::map<std::string, std::vector<std::string>> parse_set_options(const std::vector<std::string>& texts,
+                                                                  const std::string& option = "--set");
 
 // The product over the specs: an override list replaces that parameter's defaults (or quick grid).
 // A parameter that does not apply to a case (ParamSpec::applies_when) is set to its first default
 // and marked unused, and cases that then agree on every used parameter are kept once. Throws
-// UsageError when an override applies to no case, or when the grid exceeds kMaxGridCases.
+// UsageError when an override applies to no case, or when the grid exceeds `max_cases` (checked before
+// it is built).
 inline constexpr size_t kMaxGridCases = 100000;
 std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
-                                  const std::map<std::string, std::vector<std::string>>& overrides, bool quick);
+                                  const std::map<std::string, std::vector<std::string>>& overrides, bool quick,
+                                  size_t max_cases = kMaxGridCases);
 
 }  // namespace oitbench

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/data_dirs.hpp"
+#include "core/files.hpp"
 #include "core/text_position.hpp"
 
 namespace oitbench {
@@ -40,8 +41,9 @@ std::string to_value(const nlohmann::json& v, const PresetText& at, const std::v
     s << v.get<double>();
     return s.str();
   }
-  if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
-  throw at.error(keys, "expected a string or a number, got " + std::string(v.type_name()));
+  throw at.error(keys,
+                 "expected a string or a number, got " + std::string(v.type_name()) +
+                     (v.is_boolean() ? " (write a parameter's value as the command line would, e.g. \"1\")" : ""));
 }
 
 Resolution resolution_value(const nlohmann::json& v, const PresetText& at, const std::vector<std::string>& keys) {
@@ -87,13 +89,16 @@ HardwareSizes hardware_sizes(const nlohmann::json& v, const PresetText& at, std:
 }  // namespace
 
 Resolution parse_resolution(const std::string& text) {
-  static const std::regex re(R"((\d{1,5})x(\d{1,5}))");
+  static const std::regex re(R"((\d+)x(\d+))");
   std::smatch m;
-  if (!std::regex_match(text, m, re))
+  if (text.size() > 64 || !std::regex_match(text, m, re))
     throw UsageError("resolution '" + text + "': expected WIDTHxHEIGHT, e.g. 800x600");
-  Resolution r{std::stoi(m[1]), std::stoi(m[2])};
-  if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384)
-    throw UsageError("resolution '" + text + "': each side must be in [1, 16384]");
+  auto side = [&](const std::string& digits) {  // past 16384 by its length alone: no overflow
+    return digits.size() > 6 ? 1000000 : std::stoi(digits);
+  };
+  Resolution r{side(m[1]), side(m[2])};
+  if (r.width < 1 || r.height < 1 || r.width > kMaxResolutionSide || r.height > kMaxResolutionSide)
+    throw UsageError("resolution '" + text + "': each side must be in [1, " + std::to_string(kMaxResolutionSide) + "]");
   return r;
 }
 
@@ -105,6 +110,8 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw UsageError(path + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + e.what());
+  } catch (const nlohmann::json::exception& e) {  // a number past a double's range (1e400)
+    throw UsageError(path + ":" + line_column(text, json_error_offset(text, e.what())) + ": " + e.what());
   }
   const PresetText at(path, text);
   Preset p{name, "", path, {}};
@@ -129,6 +136,7 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
       throw at.error(entry, "expected an object with \"experiment\": \"NAME\"");
     RunRequest req;
     req.experiment = r["experiment"].get<std::string>();
+    req.origin = path + ":" + line_column(text, json_path_offset(text, entry)) + ": runs[" + std::to_string(i) + "]";
     for (const auto& [k, v] : r.items()) {
       if (k == "experiment") continue;
       if (k == "set") {
@@ -165,15 +173,17 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
 Preset load_preset(const std::string& dir, const std::string& name) {
   auto path = std::filesystem::path(dir) / (name + ".json");
   if (name.find('/') != std::string::npos || name.ends_with(".json")) path = name;
-  std::ifstream in(path);
-  if (!in) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
     std::string names;
     for (const auto& p : list_presets(dir)) names += (names.empty() ? "" : ", ") + p.name;
     throw UsageError("unknown preset '" + name + "'; presets in " + dir + ": " + (names.empty() ? "(none)" : names));
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_preset(path.stem().string(), path.string(), ss.str());
+  try {
+    return parse_preset(path.stem().string(), path.string(), read_text_file(path.string(), "preset"));
+  } catch (const FileError& e) {
+    throw UsageError(e.what());
+  }
 }
 
 std::vector<Preset> list_presets(const std::string& dir) {
@@ -184,12 +194,9 @@ std::vector<Preset> list_presets(const std::string& dir) {
     if (e.path().extension() == ".json") files.push_back(e.path());
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
-    std::ifstream in(f);
-    std::stringstream ss;
-    ss << in.rdbuf();
     try {
-      out.push_back(parse_preset(f.stem().string(), f.string(), ss.str()));
-    } catch (const UsageError& e) {
+      out.push_back(parse_preset(f.stem().string(), f.string(), read_text_file(f.string(), "preset")));
+    } catch (const std::runtime_error& e) {  // UsageError, FileError
       out.push_back({f.stem().string(), std::string("(broken: ") + e.what() + ")", f.string(), {}});
     }
   }

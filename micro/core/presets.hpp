@@ -24,6 +24,7 @@ std::vector<Preset> list_presets(const std::string& dir);
 // expected.
 Preset load_preset(const std::string& dir, const std::string& name);
 Preset parse_preset(const std::string& name, const std::string& path, const std::string& text);
-Resolution parse_resolution(const std::string& text);  // "800x600"; throws UsageError
+inline constexpr int kMaxResolutionSide = 16384;
+Resolution parse_resolution(const std::string& text);  // "800x600", each side in [1, 16384]; throws UsageError
 
 }  // namespace oitbench

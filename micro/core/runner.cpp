@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,37 +13,15 @@
 #include "core/csv.hpp"
 #include "core/data_dirs.hpp"
 #include "core/gpu_state.hpp"
+#include "core/interrupt.hpp"
 #include "core/isolation.hpp"
 #include "core/progress.hpp"
 #include "core/rows.hpp"
+#include "gl/render_target.hpp"
 
 namespace oitbench {
 
 namespace {
-
-// The one piece of process-wide state: async-signal-safe flags set by SIGINT/SIGTERM.
-volatile std::sig_atomic_t g_stop_signal = 0;
-extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
-
-class SignalGuard {
- public:
-  SignalGuard() {
-    struct sigaction sa {};
-    sa.sa_handler = on_stop_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &old_int_);
-    sigaction(SIGTERM, &sa, &old_term_);
-  }
-  ~SignalGuard() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  bool stopped() const { return g_stop_signal != 0; }
-
- private:
-  struct sigaction old_int_ {
-  }, old_term_{};
-};
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -94,7 +71,7 @@ class Runner {
     // A CPU rasterizer has no pipeline to keep full, and its queries are wrong: bracket every pass.
     sync_passes_ = opt_.sync_passes || gl_.is_software_renderer() || !use_gpu_timer_;
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
-    if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_));
+    if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_), "--raw");
     run_columns_ = machine_columns();
     run_columns_.insert({{"backend", ctx_->backend()},
                          {"device", ctx_->device()},
@@ -109,7 +86,7 @@ class Runner {
     size_t total_cases = 0;
     for (const auto& p : plan) total_cases += p.cases.size();
     progress_ = std::make_unique<Progress>(opt_.progress, total_cases);
-    watchdog_ = std::make_unique<Watchdog>(opt_.timeout_s, opt_.out);
+    watchdog_ = std::make_unique<Watchdog>(opt_.timeout_s, opt_.out, opt_.progress);
     for (auto& p : plan) {
       if (signals_.stopped()) break;
       bool isolate = opt_.isolate == "always" || (opt_.isolate == "auto" && p.exp->hang_prone());
@@ -152,8 +129,8 @@ class Runner {
       // Known only now that the context exists; without one (an unsupported driver) the entry's own sizes.
       const bool hardware = gl_info_known_ && !gl_.is_software_renderer();
       RunSize size = resolve_run_size(r, *e, opt_, hardware);
-      plan.push_back(
-          {e, size.resolution, size.reps, size.warmup, expand_grid(registry_.params_of(*e), r.overrides, quick)});
+      plan.push_back({e, size.resolution, size.reps, size.warmup,
+                      expand_grid(registry_.params_of(*e), r.overrides, quick, opt_.max_cases)});
     }
     return plan;
   }
@@ -205,6 +182,10 @@ class Runner {
       rec.fail(Status::Unsupported, why);
       return;
     }
+    if (auto why = render_target_size_problem(res.width, res.height); !why.empty()) {
+      rec.fail(Status::Unsupported, "render target " + why);
+      return;
+    }
     try {
       CaseContext cctx(*shaders_, gl_, res, rec.params.get("fault"), static_cast<unsigned>(rec.params.get_int("seed")),
                        opt_.image_stem, use_gpu_timer_);
@@ -224,6 +205,8 @@ class Runner {
                                                : "partial";
       if (auto err = gl_error_text(); !err.empty()) rec.fail(Status::Error, "GL error after prepare: " + err);
     } catch (const Unsupported& e) {
+      rec.fail(Status::Unsupported, e.what());
+    } catch (const RenderTargetUnavailable& e) {
       rec.fail(Status::Unsupported, e.what());
     } catch (const std::exception& e) {
       rec.fail(Status::Error, e.what());
@@ -316,12 +299,7 @@ class Runner {
   void run_isolated(const Planned& p, const ParamSet& params) {
     Experiment& exp = *p.exp;
     watchdog_->set_current(exp.name() + " " + params.describe());
-    const char* tmpdir = std::getenv("TMPDIR");
-    std::string dir_tmpl = std::string(tmpdir ? tmpdir : "/tmp") + "/oitbench-case-XXXXXX";
-    std::vector<char> dbuf(dir_tmpl.begin(), dir_tmpl.end());
-    dbuf.push_back('\0');
-    if (!mkdtemp(dbuf.data())) throw std::runtime_error("cannot create a temporary directory for an isolated case");
-    std::string dir = dbuf.data();
+    const std::string dir = make_case_dir();  // removes folders that killed runs left behind
     std::string out = dir + "/case.csv", raw = dir + "/raw.csv";
     std::vector<std::string> args = {"/proc/self/exe",
                                      "run",
@@ -439,33 +417,51 @@ RunSize resolve_run_size(const RunRequest& r, const Experiment& e, const RunOpti
   return s;
 }
 
-void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick) {
+namespace {
+// One request against the registry; returns its number of cases.
+size_t check_request(const Registry& registry, const RunRequest& r, bool quick, size_t max_cases) {
+  const Experiment* e = registry.find(r.experiment);
+  if (!e)
+    throw UsageError("unknown experiment '" + r.experiment + "'; valid experiments: " + registry.names() + ", all");
+  auto specs = registry.params_of(*e);
+  for (const auto& [name, values] : r.overrides) {
+    auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });
+    if (it == specs.end()) {
+      std::string valid;
+      for (const auto& s : specs) valid += (valid.empty() ? "" : ", ") + s.name;
+      throw UsageError("experiment '" + e->name() + "' has no parameter '" + name + "'; valid parameters: " + valid);
+    }
+    for (const auto& v : values) it->check(v, e->name());
+  }
+  try {
+    // a scoped --set that no case uses, a grid too large, a case the experiment's data rules out
+    auto cases = expand_grid(specs, r.overrides, quick || r.quick, max_cases);
+    e->check_cases(cases);
+    return cases.size();
+  } catch (const UsageError& err) {
+    throw UsageError("experiment '" + e->name() + "': " + err.what());
+  }
+}
+}  // namespace
+
+void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick, size_t max_cases) {
   if (requests.empty()) throw UsageError("nothing to run; experiments: " + registry.names());
+  size_t total = 0;
   for (const auto& r : requests) {
-    const Experiment* e = registry.find(r.experiment);
-    if (!e)
-      throw UsageError("unknown experiment '" + r.experiment + "'; valid experiments: " + registry.names() + ", all");
-    auto specs = registry.params_of(*e);
-    for (const auto& [name, values] : r.overrides) {
-      auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });
-      if (it == specs.end()) {
-        std::string valid;
-        for (const auto& s : specs) valid += (valid.empty() ? "" : ", ") + s.name;
-        throw UsageError("experiment '" + e->name() + "' has no parameter '" + name + "'; valid parameters: " + valid);
-      }
-      for (const auto& v : values) it->check(v, e->name());
-    }
     try {
-      // a scoped --set that no case uses, a grid too large, a case the experiment's data rules out
-      e->check_cases(expand_grid(specs, r.overrides, quick || r.quick));
-    } catch (const UsageError& err) {
-      throw UsageError("experiment '" + e->name() + "': " + err.what());
+      total += check_request(registry, r, quick, max_cases);
+    } catch (const UsageError& e) {
+      if (r.origin.empty()) throw;
+      throw UsageError(r.origin + ": " + e.what());
     }
+    if (total > max_cases)
+      throw UsageError("the run has " + std::to_string(total) + " cases or more, more than " +
+                       std::to_string(max_cases) + "; narrow a --set list or the experiments, or raise --max-cases");
   }
 }
 
 int run_experiments(Registry& registry, const std::vector<RunRequest>& requests, const RunOptions& options) {
-  check_requests(registry, requests, options.quick);
+  check_requests(registry, requests, options.quick, options.max_cases);
   Runner runner(registry, options);
   return runner.run(requests);
 }

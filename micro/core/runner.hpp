@@ -28,6 +28,7 @@ struct RunRequest {
   std::optional<int> reps, warmup;
   bool quick = false;  // this request uses the experiment's --quick grid and resolution
   std::optional<HardwareSizes> hardware{};
+  std::string origin{};  // a preset's entry, "presets/x.json:3:5: runs[0]": what its errors name
 };
 
 struct RunOptions {
@@ -41,8 +42,9 @@ struct RunOptions {
   std::string timer = "auto";  // auto | cpu | gpu
   bool sync_passes = false;    // glFinish around every pass on hardware drivers too (always on software ones)
   bool interleave = true;
-  std::string isolate = "auto";  // auto (hang-prone experiments) | always | never
-  double timeout_s = 600;        // per case, watchdog
+  std::string isolate = "auto";      // auto (hang-prone experiments) | always | never
+  double timeout_s = 600;            // per case, watchdog
+  size_t max_cases = kMaxGridCases;  // --max-cases: the grid's bound, checked before anything is built
   bool progress = true;
   std::string preset_name;      // recorded in each row
   std::string shader_root;      // where shaders/ lives
@@ -63,7 +65,9 @@ RunSize resolve_run_size(const RunRequest& request, const Experiment& experiment
 
 // Validates the requests against the registry and their grids (throws UsageError listing the valid
 // names); `quick`: every request uses its experiment's --quick grid.
-void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick = false);
+// `max_cases`: the most cases all requests together may have (--max-cases).
+void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick = false,
+                    size_t max_cases = kMaxGridCases);
 
 // Returns the process exit code: 0 finished, 1 errors or timeouts or interrupted (130), 3 nothing ran (unsupported).
 int run_experiments(Registry& registry, const std::vector<RunRequest>& requests, const RunOptions& options);

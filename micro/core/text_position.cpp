@@ -101,4 +101,12 @@ size_t json_path_offset(const std::string& text, const std::vector<std::string>&
   return best;
 }
 
+size_t json_error_offset(const std::string& text, const std::string& message) {
+  auto open = message.find('\'');
+  auto close = open == std::string::npos ? std::string::npos : message.find('\'', open + 1);
+  if (close == std::string::npos || close == open + 1) return 0;
+  auto at = text.find(message.substr(open + 1, close - open - 1));
+  return at == std::string::npos ? 0 : at;
+}
+
 }  // namespace oitbench

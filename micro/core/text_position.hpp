@@ -24,4 +24,8 @@ inline std::string line_column(const std::string& text, size_t byte) {
 // an array element's first character. Where the path leaves the text, the deepest part found.
 size_t json_path_offset(const std::string& text, const std::vector<std::string>& path);
 
+// Where a JSON text broke a parse that reports no position (nlohmann's "number overflow parsing
+// '1e400'"): the first place the quoted token of `message` occurs; 0 when it names none.
+size_t json_error_offset(const std::string& text, const std::string& message);
+
 }  // namespace oitbench

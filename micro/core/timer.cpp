@@ -2,9 +2,12 @@
 
 #include <stdexcept>
 
+#include "core/interrupt.hpp"
+
 namespace oitbench {
 
 PassTimer::Scope::Scope(PassTimer& t, std::string name, bool cpu_work) : timer_(t), cpu_work_(cpu_work) {
+  throw_if_stop_requested();  // Ctrl-C: the case ends between passes, not after its repetition
   if (t.in_pass_) throw std::logic_error("timed pass '" + name + "' started inside another pass");
   t.in_pass_ = true;
   index_ = t.samples_.size();

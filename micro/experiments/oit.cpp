@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/registry.hpp"
@@ -251,14 +252,15 @@ class OitExperiment final : public Experiment {
   // An effect the case's scene does not declare is a usage error before anything runs (exit 2);
   // a scene that does not load is left to the case (its FILE:LINE:COLUMN error).
   void check_cases(const std::vector<ParamSet>& cases) const override {
-    std::set<std::pair<std::string, std::string>> seen;
+    std::set<std::tuple<std::string, std::string, std::string>> seen;
     for (const auto& c : cases) {
-      if (!seen.insert({c.get("scene"), c.get("effects")}).second) continue;
+      if (!seen.insert({c.get("scene"), c.get("view"), c.get("effects")}).second) continue;
       SceneDesc s;
-      try {
+      try {  // a scene or view that is not there is bad input (exit 2), as in render and view
         s = load_scene(c.get("scene"));
-      } catch (const std::exception&) {
-        continue;
+        s.view(c.get("view"));
+      } catch (const SceneError& e) {
+        throw UsageError(e.what());
       }
       try {
         select_effects(s, c.get("effects"));

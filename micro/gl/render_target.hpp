@@ -1,14 +1,28 @@
 #pragma once
 // The headless drawing surface every experiment shares: an FBO with a colour attachment (and
 // optionally depth-stencil), a full-screen triangle, and read-back.
+#include <stdexcept>
 #include <vector>
 
 #include "gl/gl_objects.hpp"
 
 namespace oitbench {
 
+// The driver cannot make a render target of this size (past its limits, or out of memory): the runner
+// writes the case as `unsupported` with this reason.
+class RenderTargetUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Empty when width x height is within the driver's framebuffer, texture, renderbuffer and viewport
+// limits; else which limit it passes ("1920x20000: GL_MAX_TEXTURE_SIZE is 16384").
+std::string render_target_size_problem(int width, int height);
+
 class RenderTarget {
  public:
+  // Throws RenderTargetUnavailable when the driver cannot make it (render_target_size_problem, or an
+  // allocation that fails).
   RenderTarget(int width, int height, GLenum color_format = GL_RGBA32F, bool depth_stencil = false);
   void bind() const;  // binds the FBO and sets the viewport
   int width() const { return width_; }

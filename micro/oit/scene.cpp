@@ -5,12 +5,15 @@
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <set>
 #include <sstream>
 
 #include "core/data_dirs.hpp"
+#include "core/files.hpp"
 #include "core/text_position.hpp"
 
 namespace oitbench::oit {
@@ -78,6 +81,11 @@ class Node {
     if (v < lo || v > hi) fail("expected a number in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(v));
     return v;
   }
+  double integer(double lo, double hi) const {
+    double v = number(lo, hi);
+    if (v != std::floor(v)) fail("expected a whole number (a count), got " + fmt(v));
+    return v;
+  }
   bool boolean() const {
     if (!j_.is_boolean()) fail("expected true or false, got " + std::string(j_.type_name()));
     return j_.get<bool>();
@@ -100,6 +108,10 @@ class Node {
 };
 
 const std::vector<std::string> kGenerators = {"planes", "hairball", "strands", "smoke", "model"};
+// Generator parameters that are counts (whole numbers), and sizes that must be above 0.
+const std::set<std::string> kCountKeys = {"count", "strands", "segments", "sides", "per_strand", "seed", "grid"};
+const std::set<std::string> kPositiveKeys = {"half_size", "segment_length", "tube_radius",
+                                             "radius",    "head_radius",    "size"};
 
 SubmitOrder parse_order(const Node& n) {
   auto s = n.str();
@@ -329,6 +341,56 @@ void gen_smoke(Builder& b, const json& p, const Material& m, const View& view) {
   }
 }
 
+// What a mesh will hold, counted before it is built: build_mesh refuses one past kMaxMeshBytes
+// instead of allocating until the process is killed.
+struct MeshEstimate {
+  double vertices = 0, indices = 0, primitives = 0;
+  // The builder's vertices, its indices and their reordered copy, and per primitive its group,
+  // centroid and flags.
+  double bytes() const { return vertices * sizeof(Vertex) + indices * 2 * sizeof(unsigned) + primitives * 40; }
+};
+
+std::string approx_count(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
+// Throws SceneError naming the scene file, the object and the parameters behind its size.
+void check_mesh_size(const MeshEstimate& total, const SceneDesc& scene, size_t object, const std::string& why,
+                     unsigned long long max_bytes) {
+  const double index_limit = 4294967295.0;  // indices are 32-bit
+  if (total.bytes() <= static_cast<double>(max_bytes) && total.vertices < index_limit) return;
+  throw SceneError(scene.path + ": /objects/" + std::to_string(object) + " (" + scene.objects[object].generator +
+                   "): " + why + " makes the mesh about " + approx_count(total.primitives) + " primitives, " +
+                   approx_count(total.vertices) + " vertices, " + approx_count(total.bytes() / (1 << 30)) +
+                   " GiB; the most oitbench builds is " + approx_count(static_cast<double>(max_bytes) / (1 << 30)) +
+                   " GiB and 2^32 vertices: lower the parameters (or use \"detail\": small)");
+}
+
+// A procedural object's size from its parameters alone (a model's needs its file: gen_model).
+MeshEstimate estimate_object(const SceneObject& o, const json& p, std::string& why) {
+  MeshEstimate e;
+  auto num = [&](const char* k, double fallback) { return param(p, k, fallback); };
+  if (o.generator == "planes" || o.generator == "smoke") {
+    double count = num("count", o.generator == "planes" ? 128 : 510);
+    e = {4 * count, 6 * count, count};
+    why = "count " + approx_count(count);
+  } else if (o.generator == "hairball") {
+    double steps = num("strands", 500) * num("segments", 100), sides = num("sides", 3);
+    e = {steps * 2 * sides, steps * 6 * sides, steps};
+    why = "strands " + approx_count(num("strands", 500)) + " x segments " + approx_count(num("segments", 100)) +
+          " x sides " + approx_count(sides);
+  } else if (o.generator == "strands") {
+    double segments = num("segments", 90000), sides = num("sides", 0);
+    e = sides > 0 ? MeshEstimate{segments * 2 * sides, segments * 6 * sides, segments}
+                  : MeshEstimate{2 * segments + 1, 2 * segments, segments};
+    why = "segments " + approx_count(segments) + (sides > 0 ? " x sides " + approx_count(sides) : "");
+  }
+  return e;
+}
+
 // Three per-axis values from a number (the same on every axis) or an array of three numbers.
 glm::vec3 per_axis(const json& p, const char* key, float fallback) {
   if (!p.contains(key)) return glm::vec3(fallback);
@@ -347,7 +409,13 @@ glm::vec3 per_axis(const json& p, const char* key, float fallback) {
 // `exclude_materials` are left out (before the bounding box is taken). With
 // `opaque_unless_translucent`, every model material is opaque except those the file makes
 // translucent (model_opacity) or alpha_by_material names: the house's walls and its glass.
-void gen_model(Builder& b, const json& p, const Material& m, const std::string& file) {
+void gen_model(Builder& b, const json& p, const Material& m, const std::string& file, const SceneDesc& scene,
+               size_t object, MeshEstimate& total, unsigned long long max_bytes) {
+  try {
+    check_input_file(file, "model file", kMaxModelFileBytes);
+  } catch (const FileError& e) {
+    throw SceneError(scene.path + ": /objects/" + std::to_string(object) + "/file: " + e.what());
+  }
   Assimp::Importer importer;
   const aiScene* sc = importer.ReadFile(file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
                                                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
@@ -377,6 +445,23 @@ void gen_model(Builder& b, const json& p, const Material& m, const std::string& 
   glm::vec3 centre = (lo + hi) * 0.5f;
   float scale = 2.0f / std::max(glm::length(hi - lo), 1e-6f);
   glm::ivec3 grid = glm::max(glm::ivec3(per_axis(p, "grid", 1.0f)), glm::ivec3(1));
+  {  // the instances' size, before any is made
+    MeshEstimate one;
+    for (unsigned i = 0; i < sc->mNumMeshes; ++i)
+      if (included(sc->mMeshes[i])) {
+        one.vertices += sc->mMeshes[i]->mNumVertices;
+        one.indices += 3.0 * sc->mMeshes[i]->mNumFaces;
+        one.primitives += sc->mMeshes[i]->mNumFaces;
+      }
+    const double copies = static_cast<double>(grid.x) * grid.y * grid.z;
+    total.vertices += one.vertices * copies;
+    total.indices += one.indices * copies;
+    total.primitives += one.primitives * copies;
+    check_mesh_size(total, scene, object,
+                    file + " (" + approx_count(one.primitives) + " triangles) x grid " + std::to_string(grid.x) +
+                        " x " + std::to_string(grid.y) + " x " + std::to_string(grid.z),
+                    max_bytes);
+  }
   glm::vec3 spacing = per_axis(p, "spacing", 1.0f);
   float mix = static_cast<float>(param(p, "colour_mix", 0.5));
   const bool opaque_unless = p.value("opaque_unless_translucent", false);
@@ -537,6 +622,8 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     std::string what = e.what();
     if (auto at = what.find("syntax error"); at != std::string::npos) what = what.substr(at);
     throw SceneError(path + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + what);
+  } catch (const json::exception& e) {  // a number past a double's range (1e400)
+    throw SceneError(path + ":" + line_column(text, json_error_offset(text, e.what())) + ": " + e.what());
   }
   Node root(j, path, text, {});
   root.expect_object(
@@ -640,12 +727,19 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
             pk == "colours" ? (void)v.element(e).vec3(0, 1) : (void)v.element(e).number(0, 1);
         } else if ((pk == "grid" || pk == "spacing") && pv.is_array()) {
           v.vec3(pk == "grid" ? 1 : 0, 1e4);
+          if (pk == "grid")
+            for (size_t e = 0; e < 3; ++e) v.element(e).integer(1, 1e4);
         } else if (pk == "lowest_root") {
-          v.number(-1, 1);
-        } else {
-          double x = v.number(0, pk == "colour_mix" ? 1 : 1e7);
+          v.number(-1, 0.9);                // roots are drawn until one lies above it: near 1 none ever does
+        } else if (kCountKeys.count(pk)) {  // counts: whole numbers, never truncated
+          double x = v.integer(pk == "grid" ? 1 : 0, 1e7);
           if (pk == "sides" && obj.generator == "strands" && x > 0 && x < 3)
             v.fail("expected 0 (line segments) or 3 and more (tubes), got " + std::to_string(static_cast<int>(x)));
+        } else {
+          double x = v.number(0, pk == "colour_mix" ? 1 : 1e7);
+          // A size of 0 makes primitives without area: every case would capture nothing and pass.
+          if (x == 0 && kPositiveKeys.count(pk))
+            v.fail("expected a number above 0 (0 makes primitives without area, so nothing is drawn)");
         }
       }
       (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();
@@ -684,6 +778,8 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     if (n.has("fov")) view.fov_deg = static_cast<float>(n.child("fov").number(1, 170));
     if (n.has("order")) view.order = parse_order(n.child("order"));
     if (glm::length(view.eye - view.target) < 1e-6f) n.fail("eye and target coincide");
+    if (glm::length(glm::cross(glm::normalize(view.target - view.eye), view.up)) < 1e-4f)
+      n.fail("\"up\" is parallel to the view direction (or zero); give an up vector across it");
     s.views.push_back(view);
   }
   if (s.views.empty()) views.fail("expected at least one view");
@@ -696,8 +792,8 @@ SceneDesc load_scene(const std::string& name_or_path) {
   std::filesystem::path path = name_or_path;
   bool is_path = name_or_path.find('/') != std::string::npos || name_or_path.ends_with(".json");
   if (!is_path) path = std::filesystem::path(default_scene_dir()) / (name_or_path + ".json");
-  std::ifstream in(path);
-  if (!in) {
+  std::error_code exists_ec;
+  if (!std::filesystem::exists(path, exists_ec)) {
     std::string names;
     std::error_code ec;
     for (const auto& e : std::filesystem::directory_iterator(default_scene_dir(), ec))
@@ -705,17 +801,35 @@ SceneDesc load_scene(const std::string& name_or_path) {
     throw SceneError("scene '" + name_or_path + "': cannot read " + path.string() + "; scenes in " +
                      default_scene_dir() + ": " + (names.empty() ? "(none)" : names));
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(path.string(), ss.str());
+  try {
+    return parse_scene(path.string(), read_text_file(path.string(), "scene file"));
+  } catch (const FileError& e) {
+    throw SceneError(e.what());
+  }
 }
 
-Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque) {
-  Builder b;
+Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque,
+                unsigned long long max_bytes) {
+  std::vector<json> params;
   for (const auto& o : scene.objects) {
     json p = o.params;
     if (detail == Detail::Small && o.small.is_object())
       for (const auto& [k, v] : o.small.items()) p[k] = v;
+    params.push_back(std::move(p));
+  }
+  // Bound the work before any of it: the procedural objects' sizes from their parameters (a model's
+  // once its file is read, before its instances are made).
+  MeshEstimate total;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    std::string why;
+    MeshEstimate e = estimate_object(scene.objects[i], params[i], why);
+    total = {total.vertices + e.vertices, total.indices + e.indices, total.primitives + e.primitives};
+    check_mesh_size(total, scene, i, why, max_bytes);
+  }
+  Builder b;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const auto& o = scene.objects[i];
+    const json& p = params[i];
     const Material& m = scene.material(o.material);
     b.opaque = m.opaque;
     if (o.generator == "planes")
@@ -725,7 +839,7 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
     else if (o.generator == "strands")
       gen_strands(b, p, m);
     else if (o.generator == "model")
-      gen_model(b, p, m, resolve_model(scene, o.file));
+      gen_model(b, p, m, resolve_model(scene, o.file), scene, i, total, max_bytes);
     else
       gen_smoke(b, p, m, view);
   }

@@ -108,7 +108,11 @@ struct Mesh {
 // group, or one line segment) as the view asks.
 // split_opaque: primitives of opaque materials go to opaque_indices (the opaque effect draws them);
 // otherwise they stay in `indices` with alpha 1, captured like any other fragment.
-Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque = false);
+// Throws SceneError naming the file, the object and its parameters when the mesh would take more than
+// `max_bytes` (estimated from the parameters, and for a model from its file, before anything is made).
+inline constexpr unsigned long long kMaxMeshBytes = 4ull << 30;
+Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque = false,
+                unsigned long long max_bytes = kMaxMeshBytes);
 
 // The planes generator's planes of a scene, exactly as described (centre, half size, colour, alpha):
 // what the geometric reference (geometric_reference.hpp) intersects pixel rays with. Empty when the

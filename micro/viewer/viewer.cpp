@@ -259,8 +259,7 @@ class Viewer {
     }
     std::map<std::string, std::string> chosen = {
         {"scene", o.scene}, {"view", view}, {"technique", o.technique}, {"detail", o.detail}};
-    for (const auto& s : o.sets) {
-      auto [k, v] = parse_set_option(s);
+    for (const auto& [k, v] : parse_set_options(o.sets)) {
       if (v.size() != 1) throw UsageError("view: --set " + k + " takes one value");
       if (chosen.count(k) && k != "technique" && k != "detail")
         throw UsageError("view: give " + k + " as --" + k + ", not --set");

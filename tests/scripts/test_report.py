@@ -254,6 +254,53 @@ class ReportContent(ReportCase):
         self.assertTrue(os.path.isfile(self.path("busy/keep.txt")))
 
 
+class ReportFiles(ReportCase):
+    """report.py writes over no file and removes only what a previous page of its own wrote."""
+
+    def test_o_onto_a_file_is_refused_and_the_file_kept(self):
+        a, b = self.write_runs()
+        with open(self.path("taken.html"), "w", encoding="utf-8") as f:
+            f.write("mine\n")
+        proc = self.report(a, b, out="taken.html", check=False)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn("is a file, not a folder", proc.stderr)
+        self.assertNotIn("Traceback", proc.stderr)
+        with open(self.path("taken.html"), encoding="utf-8") as f:
+            self.assertEqual(f.read(), "mine\n")
+
+    def test_a_rerun_keeps_what_the_user_added_and_removes_its_own_old_files(self):
+        a, b = self.write_runs()
+        self.report(a, b)
+        figures = self.path("report/figures")
+        self.assertTrue(os.path.isdir(figures))
+        with open(os.path.join(figures, "my-notes.txt"), "w", encoding="utf-8") as f:
+            f.write("added by hand\n")
+        with open(self.path("report/README.md"), "w", encoding="utf-8") as f:
+            f.write("mine\n")
+        listed = read(self.path("report/.report-files")).split()
+        self.assertIn("index.html", listed)
+        self.assertNotIn("figures/my-notes.txt", listed)
+        old_figures = [r for r in listed if r.startswith("figures/")]
+        self.assertTrue(old_figures)
+        self.report(a)  # micro.csv only: oit.csv's figure is gone from the new page
+        self.assertTrue(os.path.isfile(os.path.join(figures, "my-notes.txt")))
+        self.assertTrue(os.path.isfile(self.path("report/README.md")))
+        now = read(self.path("report/.report-files")).split()
+        for rel in old_figures:
+            self.assertEqual(os.path.exists(self.path("report/" + rel)), rel in now, rel)
+        self.assertLess(len([r for r in now if r.startswith("figures/")]), len(old_figures))
+
+    def test_a_file_list_pointing_outside_the_folder_is_not_followed(self):
+        a, b = self.write_runs()
+        self.report(a, b)
+        with open(self.path("outside.txt"), "w", encoding="utf-8") as f:
+            f.write("keep\n")
+        with open(self.path("report/.report-files"), "a", encoding="utf-8") as f:
+            f.write("../outside.txt\n" + self.path("outside.txt") + "\n")
+        self.report(a, b)
+        self.assertTrue(os.path.isfile(self.path("outside.txt")))
+
+
 # ---------------------------------------------------------------------------------- report.py --compare
 
 class TableParser(html.parser.HTMLParser):

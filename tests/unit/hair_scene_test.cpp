@@ -82,7 +82,7 @@ TEST(HairScene, StrandParametersAreChecked) {
     }
     return std::string();
   };
-  EXPECT_NE(error_of(R"({"lowest_root": 2})").find("/objects/0/params/lowest_root: expected a number in [-1, 1]"),
+  EXPECT_NE(error_of(R"({"lowest_root": 2})").find("/objects/0/params/lowest_root: expected a number in [-1, 0.9]"),
             std::string::npos)
       << error_of(R"({"lowest_root": 2})");
   EXPECT_NE(error_of(R"({"per_strands": 8})").find("unknown key \"per_strands\""), std::string::npos);
