@@ -29,6 +29,8 @@ with --set is left out of the key, so `--set draws=64` pairs with `--set draws=7
 Writes DIR/A/ and DIR/B/ (each round's CSV and raw CSV), DIR/ab.csv (one row per case: ratio, interval,
 noise, verdict, the per-pair ratios) and DIR/ab-<experiment>.png/.svg; prints the table. Exit codes: 0 the
 comparison was made (whatever its verdicts); 1 a run failed (its output is kept); 2 usage error.
+`ab.py --summarize DIR...` summarizes trials (several out dirs of the same comparison); scripts/ab_bench.sh
+runs the trials that docs/ab-measurements.md reports.
 """
 import argparse
 import csv
@@ -207,6 +209,31 @@ def draw(out_dir, results, labels):
     return written
 
 
+def summarize(dirs):
+    """Trials of one comparison (ab.py's out dirs): how many flagged anything, and per case how often it
+    was flagged slower or faster, its ratios and the span of its intervals."""
+    per_case = {}
+    flagged_trials = 0
+    for d in dirs:
+        with open(os.path.join(d, "ab.csv"), newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+        flagged_trials += any(r["flagged"] == "1" for r in rows)
+        for r in rows:
+            per_case.setdefault(r["case"], []).append(r)
+    lines = [f"{len(dirs)} trial(s); {flagged_trials} with a flagged case"]
+    for case, rs in per_case.items():
+        ratios = [float(r["ratio"]) for r in rs]
+        los = [float(r["ci_low"]) for r in rs if r["ci_low"]]
+        his = [float(r["ci_high"]) for r in rs if r["ci_high"]]
+        noise = [float(r["noise_pct"]) for r in rs if r["noise_pct"] not in ("", "nan")]
+        lines.append(f"{case}: slower in {sum(r['verdict'] == 'SLOWER' for r in rs)}/{len(rs)}, faster in "
+                     f"{sum(r['verdict'] == 'FASTER' for r in rs)}/{len(rs)}; ratio {min(ratios):.3f}-"
+                     f"{max(ratios):.3f} (median {oitcsv.median(ratios):.3f}); intervals within "
+                     + (f"{min(los):.3f}-{max(his):.3f}" if los and his else "-")
+                     + (f"; neighbouring identical runs {oitcsv.median(noise):.1f}% apart (median)" if noise else ""))
+    return "\n".join(lines)
+
+
 def parse_env(items, ap):
     env = {}
     for item in items or []:
@@ -230,9 +257,18 @@ def main(argv=None):
     ap.add_argument("--min-effect", type=float, default=MIN_EFFECT,
                     help=f"smallest relative difference flagged (default {MIN_EFFECT:g}: 1%%)")
     ap.add_argument("--compare-only", action="store_true", help="compare the rounds already in the out dir")
+    ap.add_argument("--summarize", nargs="+", metavar="DIR",
+                    help="summarize the trials in these out dirs (their ab.csv) and exit")
     ap.add_argument("run_args", nargs=argparse.REMAINDER, help="-- then the arguments of `oitbench run`")
     args = ap.parse_args(argv)
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
+    if args.summarize:
+        try:
+            print(summarize(args.summarize))
+        except (OSError, KeyError, ValueError) as e:
+            print(f"ab.py: --summarize: {e}", file=sys.stderr)
+            return 2
+        return 0
     run_args = args.run_args[1:] if args.run_args[:1] == ["--"] else args.run_args
     if not run_args and not args.compare_only:
         ap.error("give the run arguments after --, e.g. -- occupancy --quick")

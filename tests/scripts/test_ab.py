@@ -96,6 +96,12 @@ class AbTest(TempDirTest):
             self.assertLess(float(r["ci_high"]), 1.15)
             self.assertAlmostEqual(float(r["ratio"]), 70 / 64, delta=0.01)
 
+    def test_trials_are_summarized(self):
+        self.ab("--a-args", "--set draws=64", "--b-args", "--set draws=70")
+        out = run_script("ab.py", "--summarize", self.path("out"), self.path("out")).stdout
+        self.assertIn("2 trial(s); 2 with a flagged case", out)
+        self.assertIn("slower in 2/2, faster in 0/2", out)
+
     def test_a_failed_run_is_exit_1_and_the_rest_compared(self):
         os.environ["FAKE_FAIL_CALL"] = "3"
         proc = self.ab(check=False)
