@@ -375,7 +375,20 @@ class Runner {
         for (size_t i = 0; i < live.size(); ++i) {
           auto& rec = live[i].record;
           if (!live[i].active() || !rec.cpu.count("total") || rec.cpu.at("total").empty()) continue;
-          const double sample_ms = rec.cpu.at("total").back() / scale[i] * rec.sample_runs;
+          const double rep_ms = rec.cpu.at("total").back();  // per nominal repetition
+          if (const int nominal = live[i].instance->nominal_units(); nominal > 0) {
+            // Units chosen from a JIT-laden warm-up may be far too few: choose them again from this round.
+            const int units = units_per_run(rep_ms, nominal, policy.min_sample_ms, policy.max_sample_ms);
+            if (units > rec.sample_units * 3 / 2 || units * 3 / 2 < rec.sample_units) {
+              rec.sample_units = units;
+              live[i].instance->set_units(units);
+              scale[i] = static_cast<double>(nominal) / units;
+              rec.sample_runs = runs_per_sample(rep_ms / scale[i], policy.min_sample_ms);
+              resized = true;
+              continue;
+            }
+          }
+          const double sample_ms = rep_ms / scale[i] * rec.sample_runs;
           if (sample_ms >= policy.min_sample_ms / 2) continue;
           rec.sample_runs = runs_per_sample(sample_ms / rec.sample_runs, policy.min_sample_ms);
           resized = true;
