@@ -66,6 +66,14 @@ def median_interval(values, confidence):
     return v[k - 1], v[n - k]
 
 
+def pairs_needed(cases):
+    """The fewest round pairs that give an interval at 1 - 0.05 / cases (6 for one case, 7 for two, ...)."""
+    n = 1
+    while median_interval(list(range(n)), 1 - 0.05 / max(1, cases)) is None:
+        n += 1
+    return n
+
+
 def round_order(rounds):
     """A B B A A B ...: (config, index of that config's run) for 2 * rounds runs."""
     order = []
@@ -333,6 +341,9 @@ def main(argv=None):
         print(f"{describe(r.key):<60} {r.ratio:>6.3f}x {ci:>17} {r.noise:>6.1f}%  {r.verdict}")
     for k in left_out:
         print(f"not in every round: {describe(k)}")
+    if results and n < pairs_needed(len(results)):
+        print(f"note: {len(results)} case(s) need at least {pairs_needed(len(results))} round pairs for an interval "
+              f"(--rounds); these {n} give none, so nothing can be flagged")
     flagged = [r for r in results if r.flagged]
     print(f"\n{len(flagged)} of {len(results)} case(s) flagged "
           f"({sum(r.verdict == 'SLOWER' for r in flagged)} slower, {sum(r.verdict == 'FASTER' for r in flagged)} "

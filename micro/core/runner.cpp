@@ -294,7 +294,15 @@ class Runner {
     const GpuReading gpu_start = gpu_.read();              // the clocks around the timed work (empty without NVML)
     auto stop_now = [&] { return signals_.stopped(); };
     // Warm-up, interleaved across the group: A B C A B C ...; the last one sizes the samples.
-    std::vector<double> last_ms(live.size(), 0);
+    // Scalable work warms up on one unit (one draw of occupancy's 64: the JIT, not 64 times the work),
+    // its time scaled to the nominal repetition for sizing; warmup_ms keeps what the one unit took.
+    std::vector<double> last_ms(live.size(), 0), warm_scale(live.size(), 1.0);
+    for (size_t i = 0; i < live.size(); ++i)
+      if (live[i].active() && policy.max_sample_ms > 0)
+        if (const int nominal = live[i].instance->nominal_units(); nominal > 1) {
+          live[i].instance->set_units(1);
+          warm_scale[i] = nominal;
+        }
     const int steps = p.warmup + (policy.adaptive ? policy.max_reps : p.reps);
     for (int r = -p.warmup; r < 0 && !stop_now(); ++r) {
       for (size_t i = 0; i < live.size(); ++i) {
@@ -304,8 +312,8 @@ class Runner {
         try {
           std::vector<PassSample> samples;
           double total = 0;
-          if (!run_sample(c, timer, 1, 1.0, samples, total)) continue;
-          if (r == -p.warmup) c.record.warmup_ms = total;
+          if (!run_sample(c, timer, 1, warm_scale[i], samples, total)) continue;
+          if (r == -p.warmup) c.record.warmup_ms = total / warm_scale[i];
           last_ms[i] = total;
         } catch (const std::exception& e) {
           c.record.fail(Status::Error, std::string("run: ") + e.what());

@@ -118,6 +118,13 @@ class AbTest(TempDirTest):
         self.assertEqual(proc.returncode, 2)
         self.assertIn("--out is ab.py's to set", proc.stderr)
 
+    def test_too_few_rounds_say_so(self):
+        self.assertEqual(ab.pairs_needed(1), 6)
+        self.assertEqual(ab.pairs_needed(2), 7)
+        proc = run_script("ab.py", "--rounds", 6, "-o", self.path("out"), "--a-exe", self.exe, "--b-exe", self.exe,
+                          "--", "occupancy")
+        self.assertIn("need at least 7 round pairs", proc.stdout)
+
     def test_the_interval_is_the_sampling_rule_one(self):
         self.assertIsNone(ab.median_interval([1, 2, 3, 4, 5], 0.95))
         self.assertEqual(ab.median_interval(list(range(1, 10)), 0.95), (2, 8))
