@@ -239,6 +239,12 @@ def summarize(dirs):
                      f"{max(ratios):.3f} (median {oitcsv.median(ratios):.3f}); intervals within "
                      + (f"{min(los):.3f}-{max(his):.3f}" if los and his else "-")
                      + (f"; neighbouring identical runs {oitcsv.median(noise):.1f}% apart (median)" if noise else ""))
+        # Every trial's round pairs together: as one A/B run of that many rounds.
+        pooled = [float(x) for r in rs for x in r.get("pair_ratios", "").split(";") if x]
+        ci = median_interval(pooled, 1 - 0.05 / max(1, len(per_case))) if pooled else None
+        if ci:
+            lines.append(f"  pooled over the trials: {len(pooled)} round pairs, ratio {oitcsv.median(pooled):.3f} "
+                         f"[{ci[0]:.3f}, {ci[1]:.3f}]")
     return "\n".join(lines)
 
 

@@ -101,6 +101,7 @@ class AbTest(TempDirTest):
         out = run_script("ab.py", "--summarize", self.path("out"), self.path("out")).stdout
         self.assertIn("2 trial(s); 2 with a flagged case", out)
         self.assertIn("slower in 2/2, faster in 0/2", out)
+        self.assertIn("pooled over the trials: 16 round pairs, ratio 1.09", out)
 
     def test_a_failed_run_is_exit_1_and_the_rest_compared(self):
         os.environ["FAKE_FAIL_CALL"] = "3"
