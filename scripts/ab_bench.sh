@@ -13,7 +13,7 @@
 #   knowles    three runs of a Knowles 2014 grid (planes and hairball, rev, 128x128, BASE-IS as baseline):
 #              each view's best paired resolve speedup per run (tables.py --paired)
 #
-# Defaults: 10 trials of 8 round pairs (2 cases need 7 for an interval at 97.5% each), every part, into results/llvmpipe/ab/. OITBENCH=path runs that
+# Defaults: 10 trials of 8 round pairs (2 cases need 7 for an interval at 97.5% each), every part, into results/ab-llvmpipe/ (beside, not inside, results/llvmpipe/, whose report takes every CSV below it). OITBENCH=path runs that
 # binary (default build/oitbench). Exit codes: 0 done, 1 a trial failed, 2 usage error.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +22,7 @@ OITBENCH=${OITBENCH:-build/oitbench}
 trials=10
 rounds=8
 only=identical,draws,drivers,knowles
-out=results/llvmpipe/ab
+out=results/ab-llvmpipe
 while [ $# -gt 0 ]; do
   case "$1" in
     --trials) trials=$2; shift 2 ;;
