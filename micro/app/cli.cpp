@@ -136,6 +136,7 @@ int run_cli(int argc, char** argv) {
                   "Preset directory (default: presets/ found from the binary, else the source tree's)");
   // Sample sizes, the stopping rule and paired speedups (docs/measurement.md#samples-sized-by-their-statistics).
   double target_ci_pct = ropt.sampling.target_ci * 100;
+  ropt.sampling.max_case_s = 10;  // a 2-core machine's reference runs: 10 timed seconds per case at most
   const char* sizing = "Samples and stopping";
   run->add_option("--target-ci", target_ci_pct,
                   "Repeat until the 95% interval of each case's median is within +-this % (default 3); --reps N "
@@ -146,7 +147,7 @@ int run_cli(int argc, char** argv) {
       ->check(CLI::Range(2, 100000))
       ->group(sizing);
   run->add_option("--max-case-s", ropt.sampling.max_case_s,
-                  "At most this many timed seconds per case (a group of n cases: n times it; default 30)")
+                  "At most this many timed seconds per case (a group of n cases: n times it; default 10)")
       ->check(CLI::PositiveNumber)
       ->group(sizing);
   run->add_option("--min-sample-ms", ropt.sampling.min_sample_ms,
