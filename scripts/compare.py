@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compare oitbench runs from different drivers, GPUs or commits, case by case, against the first.
 
-    scripts/compare.py A.csv B.csv [C.csv ...] [--raw A_raw.csv B_raw.csv ...] [-o DIR]
+    scripts/compare.py A.csv B.csv [C.csv ...] [--raw A_raw.csv B_raw.csv ...] [--repeat A2.csv ...] [-o DIR]
 
 A case is (experiment, variant, pass, resolution, every parameter); the driver, renderer, git sha and
 timestamp columns describe the run and stay out of the key. For every case and every later run this
@@ -19,6 +19,9 @@ Each comparison gets one of four verdicts:
                              among a handful), so not attributable either;
   SLOWER / FASTER            changed: the interval excludes 1, the ratio is beyond the band and the
                              repetitions are apart.
+With --repeat FILE... (the first configuration run again) the band's floor comes from the data instead of
+--min-effect: the 95th percentile, over an experiment's cases, of how far a repeat lies from the first run.
+For differences below that, alternate whole runs with scripts/ab.py, which pairs them round by round.
 On a shared 2-core VM identical code moves 20-30% between runs (up to 2x for sub-millisecond cases),
 which a within-run interval alone does not capture: hence the band. The last line counts the verdicts.
 Exit code 0 whatever the verdict; 2 for unreadable input.
@@ -101,26 +104,46 @@ def case_key(row, params):
         tuple(row.get(p, "") if oitcsv.applies(p, row) else "" for p in params)
 
 
-def load_raw_samples(path, timers):
-    """{(experiment, variant, pass, params...): [ms]} from a raw file, in the summary row's timer."""
+def load_raw_samples(path, summary_rows, params_of):
+    """{raw_key(summary row): [ms]}: each ok summary row's repetitions from a raw file, in its timer. A raw
+    row belongs to a summary row when experiment, variant, pass, resolution (where the raw file has it) and
+    every parameter the summary row names in `parameters` agree; a parameter the raw file fills but the case
+    does not use is ignored, so summary and raw rows pair for every experiment."""
     header, rows = oitcsv.read_csv(path)
     if not oitcsv.is_raw_header(header):
         raise oitcsv.ResultsError(f"{path}: not an oitbench --raw CSV (no rep/cpu_ms columns)")
-    params = oitcsv.raw_param_columns(header)
-    samples = {}
+    raw_params = set(oitcsv.raw_param_columns(header))
+    has_size = "width" in header and "height" in header
+    by_case = {}
     for r in rows:
-        key = (r["experiment"], r["variant"], r["pass"]) + tuple((p, r.get(p, "")) for p in params
-                                                                  if r.get(p, "") != "")
-        timer = timers.get(key, "cpu")
-        x = oitcsv.to_float(r.get("gpu_ms" if timer == "gpu" else "cpu_ms"))
-        if x is not None and x >= 0:
-            samples.setdefault(key, []).append(x)
+        by_case.setdefault((r["experiment"], r["variant"], r["pass"]), []).append(r)
+    samples = {}
+    for s in summary_rows:
+        names = [p for p in row_param_names(s, params_of.get(s["experiment"], [])) if p in raw_params]
+        timer = s.get("timer", "cpu")
+        for r in by_case.get((s["experiment"], s["variant"], s["pass"]), []):
+            if has_size and r.get("width") and (r.get("width"), r.get("height")) != (s.get("width"), s.get("height")):
+                continue
+            if any(r.get(p, "") != s.get(p, "") for p in names):
+                continue
+            x = oitcsv.to_float(r.get("gpu_ms" if timer == "gpu" else "cpu_ms"))
+            if x is not None and x >= 0:
+                samples.setdefault(raw_key(s, params_of.get(s["experiment"], [])), []).append(x)
     return samples
 
 
+def row_param_names(row, params):
+    """The parameters a summary row's case uses: its `parameters` column, or (older files without one) the
+    experiment's parameter columns that the row fills."""
+    names = [p for p in (row.get("parameters") or "").split(";") if p]
+    return names or [p for p in params if row.get(p, "") != ""]
+
+
 def raw_key(row, params):
-    return (row["experiment"], row["variant"], row["pass"]) + tuple((p, row.get(p, "")) for p in params
-                                                                     if row.get(p, "") != "")
+    """A summary row's identity among the raw rows: its case and the values of the parameters it uses."""
+    names = row_param_names(row, params)
+    return (row["experiment"], row["variant"], row["pass"], row.get("width", ""), row.get("height", "")) + \
+        tuple((p, row.get(p, "")) for p in names)
 
 
 def bootstrap_ratio_ci(a, b, iterations, rng):
@@ -142,7 +165,7 @@ def bootstrap_ratio_ci(a, b, iterations, rng):
 class Comparison:
     """One case of one run against the same case of the first run."""
 
-    def __init__(self, key, label, base, other, args, rng):
+    def __init__(self, key, label, base, other, args, rng, floor=None):
         self.key, self.label, self.base, self.other = key, label, base, other
         self.ratio = other.median / base.median if base.median else float("nan")
         if len(base.samples) >= 2 and len(other.samples) >= 2:
@@ -152,7 +175,8 @@ class Comparison:
             se = math.sqrt(base.log_se() ** 2 + other.log_se() ** 2)
             self.ci = (self.ratio * math.exp(-Z95 * se), self.ratio * math.exp(Z95 * se))
             self.ci_method = "mad"
-        self.band = max(args.min_effect, math.exp(args.noise_k * math.hypot(base.cv(), other.cv())))
+        self.band = max(args.min_effect if floor is None else floor,
+                        math.exp(args.noise_k * math.hypot(base.cv(), other.cv())))
         excludes_one = self.ci[0] > 1 or self.ci[1] < 1
         beyond_band = self.ratio > self.band or self.ratio < 1 / self.band
         (alo, ahi), (blo, bhi) = base.typical_range(), other.typical_range()
@@ -206,9 +230,13 @@ def shared_text(key, params, constant):
 
 
 def run_identity(run):
+    """Driver, renderer, backend, threads, environment, code, time, machine: what makes two runs differ
+    (an LP_NUM_THREADS=1 run must not read like the default)."""
     r = next(iter(run.rows), {})
-    return (f"{run.label}: {r.get('gl_renderer', '?')} via {r.get('backend', '?')}, "
-            f"git {r.get('git_sha', '?')}, {r.get('timestamp_utc', '?')}, {r.get('hostname', '?')}")
+    return (f"{run.label}: driver {r.get('driver') or '?'} ({r.get('gl_renderer', '?')} via "
+            f"{r.get('backend', '?')}), LP_NUM_THREADS {r.get('lp_num_threads') or '?'}, "
+            f"env {r.get('env') or '-'}, git {r.get('git_sha', '?')}, {r.get('timestamp_utc', '?')}, "
+            f"{r.get('hostname', '?')}")
 
 
 def compare(runs, raw_paths, args):
@@ -223,7 +251,7 @@ def compare(runs, raw_paths, args):
     params_of = {e: param_columns(runs, e) for e in experiments}
     notes = []
     for run, raw_path in zip(runs, raw_paths):
-        cases, timers = {}, {}
+        cases = {}
         for row in run.rows:
             params = params_of[row["experiment"]]
             if not oitcsv.is_ok(row) or oitcsv.to_float(row.get("median_ms")) is None:
@@ -233,12 +261,13 @@ def compare(runs, raw_paths, args):
                 notes.append(f"{run.label}: {describe_key(key, params)} appears twice; the first row is used")
                 continue
             cases[key] = row
-            timers[raw_key(row, params)] = row.get("timer", "cpu")
-        samples = load_raw_samples(raw_path, timers) if raw_path else {}
+        samples = load_raw_samples(raw_path, list(cases.values()), params_of) if raw_path else {}
         per_run.append({k: Case(r, samples.get(raw_key(r, params_of[k[0]]))) for k, r in cases.items()})
 
     comparisons, missing = [], []
     base = per_run[0]
+    bands = repeat_bands(base, getattr(args, "repeat", None) or [], params_of)
+    args.data_bands = bands
     all_keys = []
     for cases in per_run:
         for k in cases:
@@ -252,8 +281,30 @@ def compare(runs, raw_paths, args):
             continue
         for run, cases in zip(runs[1:], per_run[1:]):
             if key in cases:
-                comparisons.append(Comparison(key, run.label, base[key], cases[key], args, rng))
+                comparisons.append(Comparison(key, run.label, base[key], cases[key], args, rng,
+                                              bands.get(key[0])))
     return comparisons, missing, params_of, notes
+
+
+def repeat_bands(base, repeat_paths, params_of):
+    """{experiment: noise band} from runs that repeat the first configuration (--repeat): the 95th
+    percentile over its cases of how far a repeat's median lies from the first run's, max(r, 1/r). Identical
+    code on the same machine moves this much between runs, so only a ratio beyond it can be the change."""
+    logs = {}
+    for path in repeat_paths:
+        run = oitcsv.Run.load(path)
+        for row in run.rows:
+            m = oitcsv.to_float(row.get("median_ms"))
+            if not oitcsv.is_ok(row) or m is None or m <= 0 or row["experiment"] not in params_of:
+                continue
+            b = base.get(case_key(row, params_of[row["experiment"]]))
+            if b and b.median:
+                logs.setdefault(row["experiment"], []).append(abs(math.log(m / b.median)))
+    bands = {}
+    for exp, v in logs.items():
+        v.sort()
+        bands[exp] = math.exp(v[min(len(v) - 1, int(math.ceil(0.95 * len(v))) - 1)])
+    return bands
 
 
 def fmt_ms(x):
@@ -264,6 +315,13 @@ def print_report(runs, comparisons, missing, params_of, notes, args):
     print("runs (ratios are against the first):")
     for run in runs:
         print(f"  {run_identity(run)}")
+    bands = getattr(args, "data_bands", {})
+    if bands:
+        print("noise band from --repeat (95th percentile of identical runs' differences): " +
+              ", ".join(f"{e} {b:.3g}x" for e, b in sorted(bands.items())))
+    else:
+        print(f"noise band: --min-effect {args.min_effect:g}x (no --repeat runs of the first configuration to take "
+              "it from the data)")
     header = f"{'case':<52} {'run':<14} {'base ms':>9} {'ms':>9} {'ratio':>7} {'95% CI':>17} {'noise':>7}  verdict"
     current = None
     constant = {}
@@ -424,6 +482,9 @@ def main(argv=None):
     ap.add_argument("--raw", nargs="+", default=[], help="the runs' --raw files, in the same order")
     ap.add_argument("-o", "--out-dir", help="write compare-<experiment>.png/.svg and compare.csv here")
     ap.add_argument("--labels", help="comma-separated run labels (default: file names)")
+    ap.add_argument("--repeat", nargs="+", default=[],
+                    help="summary CSVs of the first configuration run again: the noise band comes from how far "
+                         "they lie from the first run (replaces --min-effect's fixed band)")
     add_statistics_options(ap)
     args = ap.parse_args(argv)
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)

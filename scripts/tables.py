@@ -558,6 +558,52 @@ def select_tables(name):
     return found
 
 
+def paired_speedups(rows):
+    """The speedups the runner paired per repetition (a preset's or --baseline's baseline, run in the same
+    interleaved group as each case: the `speedup` column and its interval): one dict per ok row that has
+    one, with experiment, technique, scene, view, pass, resolution, baseline, speedup, ci_lo, ci_hi."""
+    out = []
+    for r in rows:
+        sp = oitcsv.to_float(r.get("speedup"))
+        if not oitcsv.is_ok(r) or sp is None:
+            continue
+        out.append({"experiment": r["experiment"], "technique": r.get("technique", "") or r.get("variant", ""),
+                    "scene": r.get("scene", ""), "view": r.get("view", ""), "pass": r["pass"],
+                    "resolution": f"{r.get('width', '')}x{r.get('height', '')}", "baseline": r.get("baseline", ""),
+                    "speedup": sp, "ci_lo": oitcsv.to_float(r.get("speedup_ci_lo")),
+                    "ci_hi": oitcsv.to_float(r.get("speedup_ci_hi"))})
+    return out
+
+
+def best_paired_speedups(rows, pass_name="resolve"):
+    """Per (scene, view, resolution): the technique with the largest paired speedup of `pass_name` (Knowles
+    2014's best resolve speedup per view), as a dict of paired_speedups()."""
+    best = {}
+    for p in paired_speedups(rows):
+        if p["pass"] != pass_name:
+            continue
+        key = (p["scene"], p["view"], p["resolution"])
+        if key not in best or p["speedup"] > best[key]["speedup"]:
+            best[key] = p
+    return best
+
+
+def paired_markdown(rows):
+    """--paired: every paired speedup, and the best per view, as Markdown."""
+    lines = ["## Paired speedups (baseline and case in the same interleaved group, per repetition)", "",
+             "| scene | view | resolution | technique | pass | baseline | speedup | 95% interval |",
+             "|---|---|---|---|---|---|---:|---|"]
+    for p in paired_speedups(rows):
+        ci = f"{p['ci_lo']:.3g}-{p['ci_hi']:.3g}" if p["ci_lo"] is not None else DASH
+        lines.append(f"| {p['scene']} | {p['view']} | {p['resolution']} | {p['technique']} | {p['pass']} | "
+                     f"{p['baseline']} | {p['speedup']:.3g} | {ci} |")
+    lines += ["", "Best resolve speedup per view:", "", "| scene | view | resolution | technique | speedup |",
+              "|---|---|---|---|---:|"]
+    for (scene, view, res), p in sorted(best_paired_speedups(rows).items()):
+        lines.append(f"| {scene} | {view} | {res} | {p['technique']} | {p['speedup']:.3g} |")
+    return "\n".join(lines)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("csv", nargs="*", help="summary CSVs written by `oitbench run --out`")
@@ -566,6 +612,8 @@ def main(argv=None):
     ap.add_argument("--format", choices=("markdown", "csv"), default="markdown")
     ap.add_argument("--table", help="one table (e.g. bruell-A.1, knowles2014-2; a unique part of the name works)")
     ap.add_argument("--list", action="store_true", help="list the tables and the technique mapping")
+    ap.add_argument("--paired", action="store_true",
+                    help="print the runner's paired speedups (rows with a baseline) instead of the paper tables")
     args = ap.parse_args(argv)
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `tables.py | head` ends quietly
     if args.list:
@@ -576,6 +624,14 @@ def main(argv=None):
             alts = " | ".join(" ".join(sorted(a)) for a in rule.alternatives)
             print(f"  {tech:<52} -> {rule.experiment}: {alts}" + (
                 f"; not {' '.join(sorted(rule.exclude))}" if rule.exclude else ""))
+        return 0
+    if args.paired:
+        try:
+            runs = [oitcsv.Run.load(p) for p in args.csv]
+        except oitcsv.ResultsError as e:
+            print(f"tables.py: {e}", file=sys.stderr)
+            return 2
+        print(paired_markdown([r for run in runs for r in run.rows]))
         return 0
     try:
         tables = select_tables(args.table)

@@ -138,7 +138,8 @@ int run_cli(int argc, char** argv) {
       ->take_all();
   run->add_option("--preset", rc.preset, "Run a named grid from presets/ (see: oitbench list --presets)");
   run->add_option("--resolution", rc.resolution, "Render target WIDTHxHEIGHT (default: each experiment's own)");
-  run->add_option("--reps", ropt.reps, "Timed repetitions per case (default 5; --quick 3)")
+  run->add_option("--reps", ropt.reps,
+                  "Timed repetitions per case: a fixed count (default: until --target-ci is reached; --quick 3)")
       ->check(CLI::Range(1, 100000));
   run->add_option("--warmup", ropt.warmup, "Untimed repetitions first (default 1)")->check(CLI::Range(0, 1000));
   run->add_flag("--quick", ropt.quick, "Each experiment's small grid and resolution: finishes in seconds");
@@ -170,6 +171,36 @@ int run_cli(int argc, char** argv) {
       "Shader directory (default: shaders/ found from the binary, else the source tree's; see: oitbench info)");
   run->add_option("--presets-dir", rc.preset_dir,
                   "Preset directory (default: presets/ found from the binary, else the source tree's)");
+  // Sample sizes, the stopping rule and paired speedups (docs/measurement.md#samples-sized-by-their-statistics).
+  double target_ci_pct = ropt.sampling.target_ci * 100;
+  ropt.sampling.max_case_s = 10;  // a 2-core machine's reference runs: 10 timed seconds per case at most
+  const char* sizing = "Samples and stopping";
+  run->add_option("--target-ci", target_ci_pct,
+                  "Repeat until the 95% interval of each case's median is within +-this % (default 3); --reps N "
+                  "fixes the count instead")
+      ->check(CLI::Range(0.01, 100.0))
+      ->group(sizing);
+  run->add_option("--max-reps", ropt.sampling.max_reps, "At most this many timed repetitions per case (default 30)")
+      ->check(CLI::Range(2, 100000))
+      ->group(sizing);
+  run->add_option("--max-case-s", ropt.sampling.max_case_s,
+                  "At most this many timed seconds per case (a group of n cases: n times it; default 10)")
+      ->check(CLI::PositiveNumber)
+      ->group(sizing);
+  run->add_option("--min-sample-ms", ropt.sampling.min_sample_ms,
+                  "A sample runs the case's repetition often enough to last this long (default 20; 0: once)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(sizing);
+  run->add_option("--max-sample-ms", ropt.sampling.max_sample_ms,
+                  "A repetition longer than this runs fewer units of scalable work (occupancy's draws), times "
+                  "scaled back (default 500; 0: never)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(sizing);
+  run->add_option("--baseline", rc.baseline,
+                  "NAME=VALUE ...: the case each speedup divides by, run in every interleaved group of the cases "
+                  "it is the baseline of (e.g. technique=BASE-IS); replaces a preset's")
+      ->take_all()
+      ->group(sizing);
   run->add_option("--preset-name", ropt.preset_name, "Recorded in the preset column")->group("");
   run->add_flag("--isolated-child", ropt.isolated_child, "Set by the parent for an isolated case")->group("");
 
@@ -267,6 +298,8 @@ int run_cli(int argc, char** argv) {
       return render_command(registry, rn);
     }
     ropt.reps_given = run->count("--reps") > 0;
+    ropt.sampling.adaptive = true;  // unless --reps, a preset entry's reps or --quick fix the count
+    ropt.sampling.target_ci = target_ci_pct / 100;
     ropt.warmup_given = run->count("--warmup") > 0;
     ropt.interleave = !no_interleave;
     ropt.program_cache = !no_program_cache;

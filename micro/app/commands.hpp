@@ -24,6 +24,7 @@ struct RunCommand {
   RunOptions options;
   std::vector<std::string> experiments, sets;
   std::string preset, resolution, preset_dir;
+  std::vector<std::string> baseline;  // --baseline NAME=VALUE: the speedups' baseline
 };
 int run_command(Registry& registry, RunCommand& c);
 

@@ -10,8 +10,11 @@ namespace oitbench::app {
 namespace {
 
 std::string size_text(const RunSize& s) {
-  return std::to_string(s.resolution.width) + "x" + std::to_string(s.resolution.height) + ", " +
-         std::to_string(s.reps) + (s.reps == 1 ? " rep, " : " reps, ") + std::to_string(s.warmup) + " warm-up";
+  const std::string reps = !s.fixed_reps ? "reps until --target-ci, "
+                           : s.reps == 1 ? "1 rep, "
+                                         : std::to_string(s.reps) + " reps, ";
+  return std::to_string(s.resolution.width) + "x" + std::to_string(s.resolution.height) + ", " + reps +
+         std::to_string(s.warmup) + " warm-up";
 }
 
 // Which of a preset entry's sizes applies on this machine: a context tells whether the renderer is a
@@ -43,7 +46,8 @@ void list_presets_command(const Registry& registry, const std::string& preset_di
       "the sizes below):\n",
       preset_dir.c_str());
   const Here here = describe_here(context);
-  const RunOptions defaults;  // no --resolution, --reps or --warmup
+  RunOptions defaults;  // no --resolution, --reps or --warmup: the stopping rule decides, as in `run`
+  defaults.sampling.adaptive = true;
   for (const auto& p : list_presets(preset_dir)) {
     std::printf("  %-18s %s\n", p.name.c_str(), p.description.c_str());
     for (const auto& r : p.runs) {

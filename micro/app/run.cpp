@@ -1,4 +1,6 @@
 // oitbench run: experiments by name (or `all`) or a preset, with --set overrides, into CSV.
+#include <algorithm>
+
 #include "app/commands.hpp"
 #include "core/presets.hpp"
 
@@ -42,6 +44,30 @@ int run_command(Registry& registry, RunCommand& c) {
         throw UsageError("no selected experiment has a parameter '" + k + "' (see: oitbench list)");
       if (!used) requests[0].overrides[k] = v;  // check_requests names the valid parameters
     }
+  }
+  // --baseline NAME=VALUE ...: every request whose experiment has those parameters divides by that case
+  // (replacing a preset's own baseline); one that no request can take is a usage error.
+  if (!c.baseline.empty()) {
+    std::map<std::string, std::string> baseline;
+    for (const auto& b : c.baseline) {
+      auto [k, v] = parse_set_option(b);
+      if (v.size() != 1) throw UsageError("--baseline " + b + ": give one value, NAME=VALUE");
+      baseline[k] = v[0];
+    }
+    bool taken = false;
+    for (auto& r : requests) {
+      const auto* e = registry.find(r.experiment);
+      if (!e) continue;
+      auto specs = registry.params_of(*e);
+      bool has_all = std::all_of(baseline.begin(), baseline.end(), [&](const auto& kv) {
+        return std::any_of(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == kv.first; });
+      });
+      if (has_all || requests.size() == 1) {
+        r.baseline = baseline;
+        taken = true;
+      }
+    }
+    if (!taken) throw UsageError("no selected experiment has the parameters of --baseline (see: oitbench list)");
   }
   return run_experiments(registry, requests, ropt);
 }

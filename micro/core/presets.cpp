@@ -160,9 +160,13 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
         req.quick = v.get<bool>();
       } else if (k == "hardware") {
         req.hardware = hardware_sizes(v, at, in({k}));
+      } else if (k == "baseline") {  // {"technique": "BASE-IS"}: the case the rows' speedups divide by
+        if (!v.is_object() || v.empty()) throw at.error(in({k}), "expected an object of parameter values");
+        for (const auto& [pk, pv] : v.items()) req.baseline[pk] = to_value(pv, at, in({k, pk}));
       } else {
         throw at.error(
-            in({k}), "unknown key \"" + k + "\"; expected experiment, set, resolution, reps, warmup, quick, hardware");
+            in({k}),
+            "unknown key \"" + k + "\"; expected experiment, set, resolution, reps, warmup, quick, hardware, baseline");
       }
     }
     p.runs.push_back(std::move(req));

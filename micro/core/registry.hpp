@@ -85,6 +85,11 @@ class CaseInstance {
   // Parameters whose value was a request the case resolved (effects=scene -> opaque+transparency):
   // the rows carry what ran, so a row's parameters rerun the same case.
   virtual std::map<std::string, std::string> resolved_params() const { return {}; }
+  // Scalable work: a case whose repetition is nominal_units() units of the same work (occupancy's draws)
+  // can run fewer of them when a repetition is longer than --max-sample-ms; the framework scales the times
+  // back to the nominal repetition (sample_units in the rows). 0: not scalable.
+  virtual int nominal_units() const { return 0; }
+  virtual void set_units(int units) { (void)units; }
 };
 
 class Experiment {

@@ -48,7 +48,7 @@ Row case_columns(const RowSettings& s, const CaseRecord& c) {
   row["variant"] = c.variant;
   row["width"] = std::to_string(s.res.width);
   row["height"] = std::to_string(s.res.height);
-  row["reps"] = std::to_string(s.reps);
+  row["reps"] = std::to_string(c.cpu.count("total") ? c.cpu.at("total").size() : static_cast<size_t>(s.reps));
   row["warmup"] = std::to_string(s.warmup);
   row["timestamp_utc"] = utc_now();
   std::string names;
@@ -72,6 +72,11 @@ std::vector<Row> summary_rows(const RowSettings& s, const CaseRecord& c) {
   base["program_cache"] = c.program_cache;
   base["pass_sync"] = s.synchronised ? "1" : "0";
   for (const auto& [k, v] : c.metrics) base[k] = v;
+  base["sample_runs"] = std::to_string(c.sample_runs);
+  if (c.sample_units > 0) base["sample_units"] = std::to_string(c.sample_units);
+  base["stop"] = c.stop;
+  if (s.target_ci > 0) base["target_ci_pct"] = fmt_number(s.target_ci * 100);
+  base["baseline"] = c.baseline;
   std::vector<std::string> passes;
   if (c.pass_names.size() > 1) passes = c.pass_names;
   passes.push_back("total");
@@ -103,6 +108,20 @@ std::vector<Row> summary_rows(const RowSettings& s, const CaseRecord& c) {
       row["stddev_ms"] = fmt_number(st.stddev);
       row["samples"] = std::to_string(st.n);
       row["outliers"] = std::to_string(st.outliers);
+      const auto& primary = gpu_primary ? g : cpu->second;
+      if (auto ci = median_interval(primary); ci.ok) {
+        row["ci_lo_ms"] = fmt_number(ci.lo);
+        row["ci_hi_ms"] = fmt_number(ci.hi);
+        row["ci_pct"] = fmt_number(relative_half_width(ci, st.median) * 100, 2);
+      }
+      if (c.baseline_record)
+        if (auto sp = paired_speedup(*c.baseline_record, c, pass, s.gpu_primary)) {
+          row["speedup"] = fmt_number(sp->median);
+          if (sp->ci.ok) {
+            row["speedup_ci_lo"] = fmt_number(sp->ci.lo);
+            row["speedup_ci_hi"] = fmt_number(sp->ci.hi);
+          }
+        }
       row["cpu_median_ms"] = fmt_number(cs.median);
       row["cpu_mad_ms"] = fmt_number(cs.mad);
       if (have_gpu) {
@@ -129,6 +148,11 @@ std::vector<Row> raw_rows(const RowSettings& s, const CaseRecord& c, int rep, co
   row["experiment"] = s.experiment;
   row["variant"] = c.variant;
   row["rep"] = std::to_string(rep);
+  row["width"] = std::to_string(s.res.width);
+  row["height"] = std::to_string(s.res.height);
+  row["group"] = std::to_string(s.group);
+  row["sample_runs"] = std::to_string(c.sample_runs);
+  if (c.sample_units > 0) row["sample_units"] = std::to_string(c.sample_units);
   row["timestamp_utc"] = utc_now();
   for (const auto& [k, v] : c.params.used_values())
     if (k != "variant") row[k] = v;
@@ -143,6 +167,37 @@ std::vector<Row> raw_rows(const RowSettings& s, const CaseRecord& c, int rep, co
     for (const auto& p : samples) put(p.pass, p.cpu_ms, p.gpu_ms);
   put("total", total_ms, gpu_total_ms);
   return rows;
+}
+
+namespace {
+
+// The primary clock's samples of one pass: the queries where they are primary and every sample has one.
+std::vector<double> primary_samples(const CaseRecord& c, const std::string& pass, bool gpu_primary) {
+  auto cpu = c.cpu.find(pass);
+  if (cpu == c.cpu.end()) return {};
+  if (gpu_primary && pass != "total") {
+    const auto& gpu = c.gpu.at(pass);
+    if (!gpu.empty() && std::all_of(gpu.begin(), gpu.end(), [](double x) { return x >= 0; })) return gpu;
+  }
+  return cpu->second;
+}
+
+}  // namespace
+
+std::optional<Speedup> paired_speedup(const CaseRecord& base, const CaseRecord& c, const std::string& pass,
+                                      bool gpu_primary) {
+  if (base.status != Status::Ok || c.status != Status::Ok) return std::nullopt;
+  const auto b = primary_samples(base, pass, gpu_primary), x = primary_samples(c, pass, gpu_primary);
+  const size_t n = std::min(b.size(), x.size());
+  std::vector<double> ratios;
+  for (size_t i = 0; i < n; ++i)
+    if (x[i] > 0 && b[i] > 0) ratios.push_back(b[i] / x[i]);
+  if (ratios.empty()) return std::nullopt;
+  Speedup sp;
+  sp.median = median_of(ratios);
+  sp.ci = median_interval(ratios);
+  sp.pairs = ratios.size();
+  return sp;
 }
 
 }  // namespace oitbench

@@ -3,10 +3,12 @@
 // clocks' medians, the status and reason, the metrics, and the parameters the case uses.
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/registry.hpp"
+#include "core/sampling.hpp"
 #include "core/schema.hpp"
 #include "core/timer.hpp"
 
@@ -28,6 +30,11 @@ struct CaseRecord {
   std::map<std::string, std::vector<double>> cpu, gpu;  // by pass, "total" included; gpu < 0: no result
   std::map<std::string, std::string> metrics;           // the instance's and the validation's
   std::string note;                                     // the validation's note on an ok case
+  int sample_runs = 1;                                  // runs of the repetition per sample
+  int sample_units = 0;                         // units of work per run (0: the experiment does not scale its work)
+  std::string stop;                             // why the repetitions stopped (stop_reason_name)
+  std::string baseline;                         // NAME=VALUE;... of the case the speedup divides by (empty: none)
+  const CaseRecord* baseline_record = nullptr;  // that case's record, run in the same group (null: no speedup)
 
   void fail(Status s, const std::string& why);  // the first failure is the one kept
   // Appends to what the rows' reason will say: the note of an ok case, the reason of another.
@@ -41,6 +48,8 @@ struct RowSettings {
   std::string experiment;
   Resolution res;
   int reps = 0, warmup = 0;
+  double target_ci = 0;      // the stopping rule's target (fraction); 0: a fixed count
+  int group = 0;             // the interleaved group's index in the run (raw rows)
   bool gpu_primary = false;  // GL queries are the primary clock where every repetition has one
   bool synchronised = true;  // passes bracketed by glFinish: their CPU time is their work
 };
@@ -50,6 +59,16 @@ std::vector<Row> summary_rows(const RowSettings& s, const CaseRecord& c);
 // The --raw rows of one repetition: one per pass (when there are several) and `total`.
 std::vector<Row> raw_rows(const RowSettings& s, const CaseRecord& c, int rep, const std::vector<PassSample>& samples,
                           double total_ms, double gpu_total_ms);
+
+// Paired speedup of `c` over `base` for one pass: median and 95% interval of base[i] / c[i] over the
+// repetitions both have (they ran in the same rounds of one interleaved group), on the primary clock.
+struct Speedup {
+  double median = 0;
+  Interval ci;
+  size_t pairs = 0;
+};
+std::optional<Speedup> paired_speedup(const CaseRecord& base, const CaseRecord& c, const std::string& pass,
+                                      bool gpu_primary);
 
 // Where queries are the primary clock, a CPU clock this many times off them means one is wrong.
 inline constexpr double kTimerDisagreement = 2.0;

@@ -13,6 +13,7 @@
 #include "core/csv.hpp"
 #include "core/data_dirs.hpp"
 #include "core/gpu_state.hpp"
+#include "core/groups.hpp"
 #include "core/interrupt.hpp"
 #include "core/isolation.hpp"
 #include "core/progress.hpp"
@@ -48,7 +49,29 @@ struct Planned {
   Resolution res;
   int reps, warmup;
   std::vector<ParamSet> cases;
+  SamplingPolicy policy;                        // fixed `reps`, or the stopping rule
+  std::map<std::string, std::string> baseline;  // the request's baseline (speedups), empty: none
 };
+
+// One sample: `runs` runs of the case's repetition inside one PassTimer repetition, each pass's times
+// summed over the runs, divided by them and scaled from `units` to the nominal units of work.
+std::vector<PassSample> per_repetition(const std::vector<PassSample>& all, int runs, double scale) {
+  std::vector<PassSample> out;
+  for (const auto& s : all) {
+    auto it = std::find_if(out.begin(), out.end(), [&](const PassSample& o) { return o.pass == s.pass; });
+    if (it == out.end()) {
+      out.push_back(s);
+      continue;
+    }
+    it->cpu_ms += s.cpu_ms;
+    it->gpu_ms = (it->gpu_ms < 0 || s.gpu_ms < 0) ? -1 : it->gpu_ms + s.gpu_ms;
+  }
+  for (auto& o : out) {
+    o.cpu_ms *= scale / runs;
+    if (o.gpu_ms >= 0) o.gpu_ms *= scale / runs;
+  }
+  return out;
+}
 
 class Runner {
  public:
@@ -97,10 +120,9 @@ class Runner {
         }
       } else {
         size_t chunk = opt_.interleave ? static_cast<size_t>(std::max(1, p.exp->max_interleave())) : 1;
-        for (size_t i = 0; i < p.cases.size() && !signals_.stopped(); i += chunk) {
-          auto first = p.cases.begin() + static_cast<std::ptrdiff_t>(i);
-          auto last = p.cases.begin() + static_cast<std::ptrdiff_t>(std::min(p.cases.size(), i + chunk));
-          run_group(p, std::vector<ParamSet>(first, last));
+        for (const auto& g : plan_groups(p.cases, p.baseline, chunk)) {
+          if (signals_.stopped()) break;
+          run_group(p, g);
         }
       }
     }
@@ -129,8 +151,11 @@ class Runner {
       // Known only now that the context exists; without one (an unsupported driver) the entry's own sizes.
       const bool hardware = gl_info_known_ && !gl_.is_software_renderer();
       RunSize size = resolve_run_size(r, *e, opt_, hardware);
+      SamplingPolicy policy = opt_.sampling;
+      policy.adaptive = !size.fixed_reps;
+      policy.reps = size.reps;
       plan.push_back({e, size.resolution, size.reps, size.warmup,
-                      expand_grid(registry_.params_of(*e), r.overrides, quick, opt_.max_cases)});
+                      expand_grid(registry_.params_of(*e), r.overrides, quick, opt_.max_cases), policy, r.baseline});
     }
     return plan;
   }
@@ -166,7 +191,8 @@ class Runner {
   }
 
   RowSettings row_settings(const Planned& p) const {
-    return {run_columns_, p.exp->name(), p.res, p.reps, p.warmup, use_gpu_timer_, sync_passes_};
+    return {run_columns_, p.exp->name(),  p.res,       p.reps, p.warmup, p.policy.adaptive ? p.policy.target_ci : 0.0,
+            group_index_, use_gpu_timer_, sync_passes_};
   }
 
   static CaseRecord new_record(const ParamSet& params) {
@@ -214,46 +240,165 @@ class Runner {
     }
   }
 
-  void run_group(const Planned& p, const std::vector<ParamSet>& group) {
+  // Runs `runs` runs of the case's repetition as one sample; returns its passes per repetition, `total` (the
+  // CPU clock around every run, per repetition) and whether it ran without a GL error.
+  bool run_sample(LiveCase& c, PassTimer& timer, int runs, double scale, std::vector<PassSample>& samples,
+                  double& total) {
+    auto& rec = c.record;
+    timer.begin_repetition();
+    glFinish();
+    auto t0 = Clock::now();
+    for (int i = 0; i < runs; ++i) c.instance->run(timer);
+    glFinish();
+    total = ms_since(t0) * scale / runs;
+    samples = per_repetition(timer.end_repetition(), runs, scale);
+    if (auto err = gl_error_text(); !err.empty()) {
+      rec.fail(Status::Error, "GL error during run: " + err);
+      return false;
+    }
+    return true;
+  }
+
+  void run_group(const Planned& p, const GroupPlan& group) {
     Experiment& exp = *p.exp;
-    const RowSettings settings = row_settings(p);
-    std::vector<LiveCase> live(group.size());
-    for (size_t i = 0; i < group.size(); ++i) {
-      live[i].record = new_record(group[i]);
-      watchdog_->set_current(exp.name() + " " + group[i].describe());
+    RowSettings settings = row_settings(p);
+    const SamplingPolicy& policy = p.policy;
+    std::vector<LiveCase> live(group.cases.size());
+    for (size_t i = 0; i < live.size(); ++i) {
+      live[i].record = new_record(group.cases[i]);
+      if (!p.baseline.empty()) live[i].record.baseline = baseline_text(p.baseline);
+      watchdog_->set_current(exp.name() + " " + group.cases[i].describe());
       prepare(exp, p.res, live[i]);
     }
+    for (size_t i = 0; i < live.size(); ++i)
+      if (group.baseline_of[i] >= 0)
+        live[i].record.baseline_record = &live[static_cast<size_t>(group.baseline_of[i])].record;
     PassTimer timer(gl_.has_timer_query(), sync_passes_);  // queries recorded always; primary only where trusted
     const GpuReading gpu_start = gpu_.read();              // the clocks around the timed work (empty without NVML)
-    // Warm-up, then timed repetitions, interleaved across the group: A B C A B C ...
-    for (int r = -p.warmup; r < p.reps && !signals_.stopped(); ++r) {
-      for (auto& c : live) {
-        if (!c.active() || signals_.stopped()) continue;
+    auto stop_now = [&] { return signals_.stopped(); };
+    // Warm-up, interleaved across the group: A B C A B C ...; the last one sizes the samples.
+    // Scalable work warms up on one unit (one draw of occupancy's 64: the JIT, not 64 times the work),
+    // its time scaled to the nominal repetition for sizing; warmup_ms keeps what the one unit took.
+    std::vector<double> last_ms(live.size(), 0), warm_scale(live.size(), 1.0);
+    for (size_t i = 0; i < live.size(); ++i)
+      if (live[i].active() && policy.max_sample_ms > 0)
+        if (const int nominal = live[i].instance->nominal_units(); nominal > 1) {
+          live[i].instance->set_units(1);
+          warm_scale[i] = nominal;
+        }
+    const int steps = p.warmup + (policy.adaptive ? policy.max_reps : p.reps);
+    for (int r = -p.warmup; r < 0 && !stop_now(); ++r) {
+      for (size_t i = 0; i < live.size(); ++i) {
+        auto& c = live[i];
+        if (!c.active() || stop_now()) continue;
+        watchdog_->set_current(exp.name() + " " + c.record.params.describe());
+        try {
+          std::vector<PassSample> samples;
+          double total = 0;
+          if (!run_sample(c, timer, 1, warm_scale[i], samples, total)) continue;
+          if (r == -p.warmup) c.record.warmup_ms = total / warm_scale[i];
+          last_ms[i] = total;
+        } catch (const std::exception& e) {
+          c.record.fail(Status::Error, std::string("run: ") + e.what());
+        }
+      }
+      watchdog_->heartbeat();
+      progress_->report(exp.name(), cases_done_, live.size(), r + p.warmup + 1, steps);
+    }
+    // Sample sizes: fewer units of scalable work where a repetition is long, more runs where it is short.
+    // The warm-up may have held the JIT: the first timed round checks the size again (below).
+    std::vector<double> scale(live.size(), 1.0);
+    for (size_t i = 0; i < live.size() && !stop_now(); ++i) {
+      auto& c = live[i];
+      if (!c.active()) continue;
+      auto& rec = c.record;
+      try {
+        if (const int nominal = c.instance->nominal_units(); nominal > 0) {
+          rec.sample_units = units_per_run(last_ms[i], nominal, policy.min_sample_ms, policy.max_sample_ms);
+          c.instance->set_units(rec.sample_units);
+          scale[i] = static_cast<double>(nominal) / rec.sample_units;
+        }
+        const double rep_ms = last_ms[i] / scale[i];  // one run at the units it will do
+        rec.sample_runs = runs_per_sample(rep_ms, policy.min_sample_ms);
+      } catch (const std::exception& e) {
+        rec.fail(Status::Error, std::string("run: ") + e.what());
+      }
+    }
+    // Timed repetitions, interleaved, until the stopping rule says the group has enough.
+    const auto timed_start = Clock::now();
+    StopReason why = StopReason::Continue;
+    bool checked_size = false;
+    std::vector<Row> first_round_raw;  // the first round's raw rows wait until its sizes are confirmed
+    for (int r = 0; !stop_now(); ++r) {
+      std::vector<std::vector<double>> totals;
+      for (const auto& c : live)
+        if (c.active())
+          totals.push_back(c.record.cpu.count("total") ? c.record.cpu.at("total") : std::vector<double>{});
+      if (totals.empty()) break;
+      why = stop_group(policy, totals, ms_since(timed_start) / 1000.0);
+      if (why != StopReason::Continue) break;
+      for (size_t i = 0; i < live.size(); ++i) {
+        auto& c = live[i];
+        if (!c.active() || stop_now()) continue;
         auto& rec = c.record;
         watchdog_->set_current(exp.name() + " " + rec.params.describe());
         try {
-          timer.begin_repetition();
-          glFinish();
-          auto t0 = Clock::now();
-          c.instance->run(timer);
-          glFinish();
-          double total = ms_since(t0);
-          auto samples = timer.end_repetition();
-          if (auto err = gl_error_text(); !err.empty()) {
-            rec.fail(Status::Error, "GL error during run: " + err);
-            continue;
-          }
-          if (r == -p.warmup) rec.warmup_ms = total;
-          if (r < 0) continue;
+          std::vector<PassSample> samples;
+          double total = 0;
+          if (!run_sample(c, timer, rec.sample_runs, scale[i], samples, total)) continue;
           double gpu_total = rec.add_repetition(samples, total);
-          if (raw_writer_) write(*raw_writer_, raw_rows(settings, rec, r, samples, total, gpu_total));
+          if (raw_writer_) {
+            auto rows = raw_rows(settings, rec, r, samples, total, gpu_total);
+            if (checked_size)
+              write(*raw_writer_, rows);
+            else
+              first_round_raw.insert(first_round_raw.end(), rows.begin(), rows.end());
+          }
         } catch (const std::exception& e) {
           rec.fail(Status::Error, std::string("run: ") + e.what());
         }
       }
+      if (!checked_size) {
+        // A sample shorter than half of --min-sample-ms was sized from a warm-up that held the JIT: size it
+        // from this round and take the round as one more warm-up, for every case of the group alike.
+        checked_size = true;
+        bool resized = false;
+        for (size_t i = 0; i < live.size(); ++i) {
+          auto& rec = live[i].record;
+          if (!live[i].active() || !rec.cpu.count("total") || rec.cpu.at("total").empty()) continue;
+          const double rep_ms = rec.cpu.at("total").back();  // per nominal repetition
+          if (const int nominal = live[i].instance->nominal_units(); nominal > 0) {
+            // Units chosen from a JIT-laden warm-up may be far too few: choose them again from this round.
+            const int units = units_per_run(rep_ms, nominal, policy.min_sample_ms, policy.max_sample_ms);
+            if (units > rec.sample_units * 3 / 2 || units * 3 / 2 < rec.sample_units) {
+              rec.sample_units = units;
+              live[i].instance->set_units(units);
+              scale[i] = static_cast<double>(nominal) / units;
+              rec.sample_runs = runs_per_sample(rep_ms / scale[i], policy.min_sample_ms);
+              resized = true;
+              continue;
+            }
+          }
+          const double sample_ms = rep_ms / scale[i] * rec.sample_runs;
+          if (sample_ms >= policy.min_sample_ms / 2) continue;
+          rec.sample_runs = runs_per_sample(sample_ms / rec.sample_runs, policy.min_sample_ms);
+          resized = true;
+        }
+        if (resized) {
+          for (auto& c : live) {
+            c.record.cpu.clear();
+            c.record.gpu.clear();
+          }
+          first_round_raw.clear();
+          r = -1;  // the next round is the first timed one again
+        } else if (raw_writer_) {
+          write(*raw_writer_, first_round_raw);
+        }
+      }
       watchdog_->heartbeat();
-      progress_->report(exp.name(), cases_done_, live.size(), r + p.warmup + 1, p.reps + p.warmup);
+      progress_->report(exp.name(), cases_done_, live.size(), r + p.warmup + 1, steps);
     }
+    ++group_index_;
     if (signals_.stopped()) return;  // unfinished cases write nothing; finished rows are on disk
     const GpuReading gpu_end = gpu_.read();
     RowSettings summary = settings;
@@ -278,8 +423,15 @@ class Runner {
       }
       // The cases that ran while the clocks moved say so (those that never ran have nothing to qualify).
       if (!clock_note.empty() && (rec.status == Status::Ok || rec.status == Status::Invalid)) rec.add_note(clock_note);
-      finish_case(summary, rec);
-      c.instance.reset();
+      if (rec.status == Status::Ok && rec.cpu.count("total")) {
+        rec.stop = stop_reason_name(why);
+        if (auto note = ci_note(policy, rec.cpu.at("total"), why); !note.empty()) rec.add_note(note);
+      }
+    }
+    // Rows after every case of the group is validated: a speedup needs its baseline's status.
+    for (size_t i = 0; i < live.size(); ++i) {
+      if (!group.shadow[i]) finish_case(summary, live[i].record);
+      live[i].instance.reset();
     }
   }
 
@@ -318,14 +470,19 @@ class Runner {
                                      std::to_string(opt_.context.device),
                                      "--resolution",
                                      std::to_string(p.res.width) + "x" + std::to_string(p.res.height),
-                                     "--reps",
-                                     std::to_string(p.reps),
                                      "--warmup",
                                      std::to_string(p.warmup),
                                      "--timer",
                                      opt_.timer,
                                      "--shaders",
                                      opt_.shader_root};
+    if (p.policy.adaptive)
+      args.insert(args.end(), {"--target-ci", fmt_number(p.policy.target_ci * 100), "--max-reps",
+                               std::to_string(p.policy.max_reps), "--max-case-s", fmt_number(p.policy.max_case_s)});
+    else
+      args.insert(args.end(), {"--reps", std::to_string(p.reps)});
+    args.insert(args.end(), {"--min-sample-ms", fmt_number(p.policy.min_sample_ms), "--max-sample-ms",
+                             fmt_number(p.policy.max_sample_ms)});
     if (!opt_.preset_name.empty()) args.insert(args.end(), {"--preset-name", opt_.preset_name});
     if (raw_writer_) args.insert(args.end(), {"--raw", raw});
     if (!opt_.interleave) args.push_back("--no-interleave");
@@ -394,6 +551,7 @@ class Runner {
   Row run_columns_;
   std::map<Status, int> counts_;
   size_t cases_done_ = 0;
+  int group_index_ = 0;  // interleaved groups run so far (the raw rows' group)
   std::unique_ptr<Progress> progress_;
   std::unique_ptr<Watchdog> watchdog_;
   std::mutex mutex_;
@@ -413,6 +571,9 @@ RunSize resolve_run_size(const RunRequest& r, const Experiment& e, const RunOpti
                  : quick         ? e.quick_resolution()
                                  : e.default_resolution();
   s.reps = opt.reps_given ? opt.reps : hw.reps ? *hw.reps : r.reps.value_or(quick ? std::min(opt.reps, 3) : opt.reps);
+  // The stopping rule decides unless a count is given: --reps, the entry's reps, a --quick grid, or
+  // a caller that did not ask for it (RunOptions::sampling.adaptive).
+  s.fixed_reps = !opt.sampling.adaptive || opt.reps_given || hw.reps || r.reps || quick;
   s.warmup = opt.warmup_given ? opt.warmup : hw.warmup ? *hw.warmup : r.warmup.value_or(opt.warmup);
   return s;
 }
@@ -432,6 +593,12 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
       throw UsageError("experiment '" + e->name() + "' has no parameter '" + name + "'; valid parameters: " + valid);
     }
     for (const auto& v : values) it->check(v, e->name());
+  }
+  for (const auto& [name, value] : r.baseline) {
+    auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });
+    if (it == specs.end())
+      throw UsageError("experiment '" + e->name() + "': the baseline names no parameter '" + name + "'");
+    it->check(value, e->name());
   }
   try {
     // a scoped --set that no case uses, a grid too large, a case the experiment's data rules out

@@ -9,6 +9,7 @@
 
 #include "core/provenance.hpp"
 #include "core/registry.hpp"
+#include "core/sampling.hpp"
 #include "core/schema.hpp"
 
 namespace oitbench {
@@ -29,6 +30,9 @@ struct RunRequest {
   bool quick = false;  // this request uses the experiment's --quick grid and resolution
   std::optional<HardwareSizes> hardware{};
   std::string origin{};  // a preset's entry, "presets/x.json:3:5: runs[0]": what its errors name
+  // The case each speedup divides by (a preset's "baseline", --baseline NAME=VALUE): it runs in every
+  // interleaved group of the cases it is the baseline of (core/groups.hpp).
+  std::map<std::string, std::string> baseline{};
 };
 
 struct RunOptions {
@@ -36,6 +40,9 @@ struct RunOptions {
   std::optional<Resolution> resolution;  // overrides every request's and the experiments' defaults
   int reps = 5, warmup = 1;
   bool reps_given = false, warmup_given = false;
+  // Sample sizes and the stopping rule (--min-sample-ms, --max-sample-ms, --target-ci, --max-reps,
+  // --max-case-s). `adaptive` is the command line's default; a caller that leaves it false gets `reps`.
+  SamplingPolicy sampling{};
   bool quick = false;
   std::string out = "-";
   std::string raw;             // --raw: every repetition as a row
@@ -58,6 +65,7 @@ struct RunOptions {
 struct RunSize {
   Resolution resolution;
   int reps = 0, warmup = 0;
+  bool fixed_reps = true;       // reps is the count; false: the stopping rule decides
   bool hardware_sizes = false;  // a value of the request's `hardware` entry was used
 };
 RunSize resolve_run_size(const RunRequest& request, const Experiment& experiment, const RunOptions& options,

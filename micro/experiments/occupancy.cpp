@@ -123,8 +123,11 @@ class OccupancyCase final : public CaseInstance {
     target_.bind();
     glUseProgram(program_.get());
     auto pass = timer.pass("draw");
-    for (int i = 0; i < draws_; ++i) quad_.draw();
+    for (int i = 0; i < run_draws_; ++i) quad_.draw();
   }
+
+  int nominal_units() const override { return draws_; }
+  void set_units(int units) override { run_draws_ = units; }
 
   Validation validate() override {
     auto px = target_.read_rgba32f();
@@ -200,6 +203,7 @@ class OccupancyCase final : public CaseInstance {
   }
 
   int size_, draws_;
+  int run_draws_ = draws_;  // draws per timed run: fewer where the framework scales the work down
   bool dynamic_;
   RenderTarget target_;
   FullscreenTriangle quad_;

@@ -142,7 +142,9 @@ TEST(Presets, MalformedHardwareSizesNameFileLineColumnAndEntry) {
   // The entry's own keys are placed the same way now.
   EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "sett": {}}]})"),
             "t.json:1:39: runs[0].sett: unknown key \"sett\"; expected experiment, set, resolution, reps, warmup, "
-            "quick, hardware");
+            "quick, hardware, baseline");
+  EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "baseline": []}]})"),
+            "t.json:1:39: runs[0].baseline: expected an object of parameter values");
   EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "reps": 1.5}]})"),
             "t.json:1:39: runs[0].reps: expected a positive integer (at most 100000), got 1.5");
   EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "set": {"size": [1, {}]}}]})"),

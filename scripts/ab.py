@@ -1,0 +1,368 @@
+#!/usr/bin/python3
+"""A/B: alternate whole short runs of two configurations and compare them round by round.
+
+    scripts/ab.py [--rounds N] [-o DIR] [A/B options] -- RUN ARGUMENTS...
+
+RUN ARGUMENTS are what both configurations run (`oitbench run` arguments: experiments, --set, --preset,
+--quick, ...). The two configurations differ by what the A/B options add to each:
+
+    --a-exe PATH / --b-exe PATH      two binaries (two builds, two commits; default: build/oitbench)
+    --a-env NAME=V / --b-env NAME=V  two environments (repeatable; e.g. --b-env LP_NUM_THREADS=1)
+    --a-args "..." / --b-args "..."  two sets of run arguments (--driver zink, --set draws=70, ...)
+
+Rounds go A B B A A B B A ..., each run a child process of its own (`oitbench run ... --out
+DIR/A/round-NN.csv --raw ...`), so neither configuration always runs first, or always after the other, and
+drift between runs falls on both alike. Round pair k is the k-th A and the k-th B, run back to back. For
+every case (experiment, variant, pass, resolution, parameters; a parameter that --a-args or --b-args sets
+with --set is left out of the key, so `--set draws=64` pairs with `--set draws=70`):
+
+    ratio       the median over the round pairs of median(B_k) / median(A_k): above 1, B is slower;
+    interval    the distribution-free interval of that median (order statistics of the paired ratios)
+                at 1 - 0.05 / cases (Bonferroni: the chance that any case of an identical pair is flagged
+                stays at 5 %); with too few round pairs for it, there is no interval and no verdict;
+    noise       how far two runs of the same configuration move apart: the robust spread (1.4826 MAD) of
+                the log ratios of consecutive runs of one configuration (the A's and the B's that are
+                neighbours in A B B A A B ...), in %;
+    verdict     SLOWER / FASTER when the interval lies wholly beyond 1 +- --min-effect (default 1 %),
+                else "no difference resolved".
+
+Writes DIR/A/ and DIR/B/ (each round's CSV and raw CSV), DIR/ab.csv (one row per case: ratio, interval,
+noise, verdict, the per-pair ratios) and DIR/ab-<experiment>.png/.svg; prints the table. Exit codes: 0 the
+comparison was made (whatever its verdicts); 1 a run failed (its output is kept); 2 usage error.
+`ab.py --summarize DIR...` summarizes trials (several out dirs of the same comparison); scripts/ab_bench.sh
+runs the trials that docs/ab-measurements.md reports.
+"""
+import argparse
+import csv
+import math
+import os
+import shlex
+import signal
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import oitcsv  # noqa: E402
+
+DEFAULT_EXE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "build", "oitbench")
+MIN_EFFECT = 0.01
+
+
+def binomial_half_cdf(n, j):
+    return sum(math.comb(n, i) for i in range(j + 1)) / 2.0 ** n
+
+
+def median_interval(values, confidence):
+    """The order statistics x(k), x(n+1-k) around the median at `confidence` (as micro/core/sampling.cpp);
+    None below the count that allows it."""
+    v = sorted(values)
+    n = len(v)
+    tail = (1 - confidence) / 2
+    k = 0
+    while k + 1 <= (n + 1) // 2 and binomial_half_cdf(n, k) <= tail:
+        k += 1
+    if k < 1:
+        return None
+    return v[k - 1], v[n - k]
+
+
+def pairs_needed(cases):
+    """The fewest round pairs that give an interval at 1 - 0.05 / cases (6 for one case, 7 for two, ...)."""
+    n = 1
+    while median_interval(list(range(n)), 1 - 0.05 / max(1, cases)) is None:
+        n += 1
+    return n
+
+
+def round_order(rounds):
+    """A B B A A B ...: (config, index of that config's run) for 2 * rounds runs."""
+    order = []
+    for k in range(rounds):
+        pair = ("A", "B") if k % 2 == 0 else ("B", "A")
+        order.extend((c, k) for c in pair)
+    return order
+
+
+def set_names(args_text):
+    """The parameter names a configuration's arguments set with --set NAME=..."""
+    words = shlex.split(args_text or "")
+    names = set()
+    for i, w in enumerate(words):
+        if w == "--set":
+            for x in words[i + 1:]:
+                if x.startswith("-"):
+                    break
+                names.add(x.split("=", 1)[0])
+        elif w.startswith("--set="):
+            names.add(w[len("--set="):].split("=", 1)[0])
+    return names
+
+
+def case_key(row, skip):
+    params = [p for p in (row.get("parameters") or "").split(";") if p and p not in skip]
+    return (row["experiment"], row.get("variant", ""), row["pass"], row.get("width", ""), row.get("height", "")) + \
+        tuple(f"{p}={row.get(p, '')}" for p in params)
+
+
+def describe(key):
+    exp, variant, pas, w, h = key[:5]
+    parts = [exp] + ([variant] if variant else []) + [p for p in key[5:]
+                                                     if not p.startswith(("seed=", "fault=none"))]
+    if pas != "total":
+        parts.append(f"pass={pas}")
+    parts.append(f"{w}x{h}")
+    return " ".join(parts)
+
+
+def medians(path, skip):
+    """{case key: median_ms} of a round's ok rows."""
+    _, rows = oitcsv.read_csv(path)
+    out = {}
+    for r in rows:
+        m = oitcsv.to_float(r.get("median_ms"))
+        if oitcsv.is_ok(r) and m is not None and m > 0:
+            out.setdefault(case_key(r, skip), m)
+    return out
+
+
+def run_identity(path):
+    _, rows = oitcsv.read_csv(path)
+    r = rows[0] if rows else {}
+    return (f"driver {r.get('driver', '?')} ({r.get('gl_renderer', '?')}), git {r.get('git_sha', '?')}, "
+            f"LP_NUM_THREADS {r.get('lp_num_threads', '?')}, env {r.get('env') or '-'}")
+
+
+class CaseResult:
+    def __init__(self, key, a, b, min_effect, confidence):
+        self.key = key
+        n = min(len(a), len(b))
+        self.ratios = [b[i] / a[i] for i in range(n)]
+        self.ratio = oitcsv.median(self.ratios) if self.ratios else float("nan")
+        self.ci = median_interval(self.ratios, confidence) if self.ratios else None
+        # Neighbouring runs of one configuration: A(k) with A(k+1) where they are adjacent in A B B A A B ...
+        logs = []
+        for series in (a, b):
+            logs += [math.log(series[i + 1] / series[i]) for i in range(len(series) - 1)]
+        self.noise = 100 * (math.exp(oitcsv.robust_sigma(mad(logs))) - 1) if len(logs) >= 2 else float("nan")
+        if self.ci is None:
+            self.verdict = "too few round pairs for an interval"
+        elif self.ci[0] > 1 + min_effect:
+            self.verdict = "SLOWER"
+        elif self.ci[1] < 1 / (1 + min_effect):
+            self.verdict = "FASTER"
+        else:
+            self.verdict = "no difference resolved"
+        self.flagged = self.verdict in ("SLOWER", "FASTER")
+
+
+def mad(values):
+    if not values:
+        return 0.0
+    m = oitcsv.median(values)
+    return oitcsv.median([abs(x - m) for x in values])
+
+
+def compare_rounds(a_paths, b_paths, skip, min_effect):
+    """CaseResults of the cases every round of both configurations has, and the keys left out."""
+    a = [medians(p, skip) for p in a_paths]
+    b = [medians(p, skip) for p in b_paths]
+    keys = [k for k in a[0] if all(k in r for r in a + b)] if a else []
+    left_out = sorted({k for r in a + b for k in r} - set(keys))
+    confidence = 1 - 0.05 / max(1, len(keys))
+    return [CaseResult(k, [r[k] for r in a], [r[k] for r in b], min_effect, confidence) for k in keys], left_out
+
+
+def write_table(path, results):
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(["experiment", "case", "pass", "ratio", "ci_low", "ci_high", "noise_pct", "verdict", "flagged",
+                    "pairs", "pair_ratios"])
+        for r in results:
+            w.writerow([r.key[0], describe(r.key), r.key[2], f"{r.ratio:.6g}",
+                        f"{r.ci[0]:.6g}" if r.ci else "", f"{r.ci[1]:.6g}" if r.ci else "",
+                        f"{r.noise:.3g}", r.verdict, int(r.flagged), len(r.ratios),
+                        ";".join(f"{x:.5g}" for x in r.ratios)])
+
+
+def draw(out_dir, results, labels):
+    os.environ.setdefault("MPLBACKEND", "Agg")
+    import matplotlib
+    matplotlib.use(os.environ["MPLBACKEND"])
+    import matplotlib.pyplot as plt
+    written = []
+    by_exp = {}
+    for r in results:
+        by_exp.setdefault(r.key[0], []).append(r)
+    for exp, rs in by_exp.items():
+        fig, ax = plt.subplots(figsize=(9, 1.4 + 0.3 * len(rs)))
+        for y, r in enumerate(rs):
+            ax.plot(r.ratios, [y] * len(r.ratios), "|", color="grey", markersize=8)
+            if r.ci:
+                ax.plot([r.ci[0], r.ci[1]], [y, y], color="red" if r.flagged else "C0", linewidth=2)
+            ax.plot([r.ratio], [y], "o", color="red" if r.flagged else "C0")
+        ax.axvline(1.0, color="black", linewidth=0.8)
+        ax.set_yticks(range(len(rs)))
+        ax.set_yticklabels([describe(r.key) for r in rs], fontsize=8)
+        ax.invert_yaxis()
+        ax.set_xlabel(f"{labels[1]} / {labels[0]}: paired ratio per round (|), median and interval (>1: "
+                      f"{labels[1]} slower)")
+        ax.set_title(f"{exp}: {sum(r.flagged for r in rs)} of {len(rs)} cases flagged", fontsize=10)
+        ax.grid(True, axis="x", alpha=0.3)
+        with plt.rc_context({"svg.hashsalt": "oitbench"}):
+            for fmt in ("png", "svg"):
+                path = os.path.join(out_dir, f"ab-{exp}.{fmt}")
+                fig.savefig(path, dpi=120, bbox_inches="tight", metadata={"Date": None} if fmt == "svg" else None)
+                written.append(path)
+        plt.close(fig)
+    return written
+
+
+def summarize(dirs):
+    """Trials of one comparison (ab.py's out dirs): how many flagged anything, and per case how often it
+    was flagged slower or faster, its ratios and the span of its intervals."""
+    per_case = {}
+    flagged_trials = 0
+    for d in dirs:
+        with open(os.path.join(d, "ab.csv"), newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+        flagged_trials += any(r["flagged"] == "1" for r in rows)
+        for r in rows:
+            per_case.setdefault(r["case"], []).append(r)
+    lines = [f"{len(dirs)} trial(s); {flagged_trials} with a flagged case"]
+    for case, rs in per_case.items():
+        ratios = [float(r["ratio"]) for r in rs]
+        los = [float(r["ci_low"]) for r in rs if r["ci_low"]]
+        his = [float(r["ci_high"]) for r in rs if r["ci_high"]]
+        noise = [float(r["noise_pct"]) for r in rs if r["noise_pct"] not in ("", "nan")]
+        lines.append(f"{case}: slower in {sum(r['verdict'] == 'SLOWER' for r in rs)}/{len(rs)}, faster in "
+                     f"{sum(r['verdict'] == 'FASTER' for r in rs)}/{len(rs)}; ratio {min(ratios):.3f}-"
+                     f"{max(ratios):.3f} (median {oitcsv.median(ratios):.3f}); intervals within "
+                     + (f"{min(los):.3f}-{max(his):.3f}" if los and his else "-")
+                     + (f"; neighbouring identical runs {oitcsv.median(noise):.1f}% apart (median)" if noise else ""))
+        # Every trial's round pairs together: as one A/B run of that many rounds.
+        pooled = [float(x) for r in rs for x in r.get("pair_ratios", "").split(";") if x]
+        ci = median_interval(pooled, 1 - 0.05 / max(1, len(per_case))) if pooled else None
+        if ci:
+            lines.append(f"  pooled over the trials: {len(pooled)} round pairs, ratio {oitcsv.median(pooled):.3f} "
+                         f"[{ci[0]:.3f}, {ci[1]:.3f}]")
+    return "\n".join(lines)
+
+
+def parse_env(items, ap):
+    env = {}
+    for item in items or []:
+        if "=" not in item:
+            ap.error(f"expected NAME=VALUE, got '{item}'")
+        k, v = item.split("=", 1)
+        env[k] = v
+    return env
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 usage="ab.py [options] -- RUN ARGUMENTS...")
+    ap.add_argument("--rounds", type=int, default=10, help="round pairs: A and B runs each (default 10)")
+    ap.add_argument("-o", "--out-dir", default="ab", help="where the runs and the comparison go (default ab/)")
+    for c in ("a", "b"):
+        ap.add_argument(f"--{c}-exe", default=DEFAULT_EXE, help=f"{c.upper()}'s oitbench binary")
+        ap.add_argument(f"--{c}-env", action="append", metavar="NAME=VALUE", help=f"{c.upper()}'s environment")
+        ap.add_argument(f"--{c}-args", default="", help=f"{c.upper()}'s own run arguments (one string)")
+        ap.add_argument(f"--{c}-label", default=c.upper(), help=f"{c.upper()}'s name in the output")
+    ap.add_argument("--min-effect", type=float, default=MIN_EFFECT,
+                    help=f"smallest relative difference flagged (default {MIN_EFFECT:g}: 1%%)")
+    ap.add_argument("--compare-only", action="store_true", help="compare the rounds already in the out dir")
+    ap.add_argument("--summarize", nargs="+", metavar="DIR",
+                    help="summarize the trials in these out dirs (their ab.csv) and exit")
+    ap.add_argument("run_args", nargs=argparse.REMAINDER, help="-- then the arguments of `oitbench run`")
+    args = ap.parse_args(argv)
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)
+    if args.summarize:
+        try:
+            print(summarize(args.summarize))
+        except (OSError, KeyError, ValueError) as e:
+            print(f"ab.py: --summarize: {e}", file=sys.stderr)
+            return 2
+        return 0
+    run_args = args.run_args[1:] if args.run_args[:1] == ["--"] else args.run_args
+    if not run_args and not args.compare_only:
+        ap.error("give the run arguments after --, e.g. -- occupancy --quick")
+    if args.rounds < 1:
+        ap.error("--rounds must be at least 1")
+    for bad in ("--out", "-o", "--raw"):
+        if bad in run_args:
+            ap.error(f"{bad} is ab.py's to set")
+    configs = {}
+    for c in ("A", "B"):
+        lc = c.lower()
+        configs[c] = {"exe": getattr(args, f"{lc}_exe"), "env": parse_env(getattr(args, f"{lc}_env"), ap),
+                      "args": shlex.split(getattr(args, f"{lc}_args")), "label": getattr(args, f"{lc}_label")}
+    skip = set_names(args.a_args) | set_names(args.b_args)
+    paths = {c: [] for c in configs}
+    failed = []
+    for c in configs:
+        os.makedirs(os.path.join(args.out_dir, c), exist_ok=True)
+    for c, k in round_order(args.rounds):
+        out = os.path.join(args.out_dir, c, f"round-{k + 1:02d}.csv")
+        raw = os.path.join(args.out_dir, c, f"round-{k + 1:02d}_raw.csv")
+        paths[c].append(out)
+        if args.compare_only:
+            continue
+        for p in (out, raw):
+            if os.path.exists(p):
+                os.remove(p)
+        cfg = configs[c]
+        cmd = [cfg["exe"], "run"] + run_args + cfg["args"] + ["--out", out, "--raw", raw, "--no-progress"]
+        print(f"[ab] round {k + 1}/{args.rounds} {c} ({cfg['label']}): {shlex.join(cmd)}", flush=True)
+        try:
+            rc = subprocess.call(cmd, env={**os.environ, **cfg["env"]})
+        except OSError as e:
+            print(f"ab.py: cannot run {cfg['exe']}: {e}", file=sys.stderr)
+            return 2
+        if rc == 130:
+            print("ab.py: interrupted", file=sys.stderr)
+            return 130
+        if rc not in (0, 3):
+            failed.append(f"{c} round {k + 1} (exit {rc})")
+    # Pairs are rounds: a round that lost either run is left out whole, never shifted onto the next.
+    both = [k for k in range(args.rounds) if os.path.exists(paths["A"][k]) and os.path.exists(paths["B"][k])]
+    present = {c: [paths[c][k] for k in both] for c in paths}
+    n = len(both)
+    if n == 0:
+        print("ab.py: no round wrote a CSV", file=sys.stderr)
+        return 1
+    try:
+        results, left_out = compare_rounds(present["A"], present["B"], skip, args.min_effect)
+        labels = (configs["A"]["label"], configs["B"]["label"])
+        print(f"A = {labels[0]}: {run_identity(present['A'][0])}")
+        print(f"B = {labels[1]}: {run_identity(present['B'][0])}")
+    except oitcsv.ResultsError as e:
+        print(f"ab.py: {e}", file=sys.stderr)
+        return 2
+    print(f"{n} round pair(s) A B B A ...; ratio = B / A per pair, its median and interval (at "
+          f"{100 * (1 - 0.05 / max(1, len(results))):.2f}% each, 95% for all {len(results)} together); "
+          "noise = spread of neighbouring runs of one configuration\n")
+    print(f"{'case':<60} {'ratio':>7} {'interval':>17} {'noise':>7}  verdict")
+    for r in results:
+        ci = f"[{r.ci[0]:.3f}, {r.ci[1]:.3f}]" if r.ci else "-"
+        print(f"{describe(r.key):<60} {r.ratio:>6.3f}x {ci:>17} {r.noise:>6.1f}%  {r.verdict}")
+    for k in left_out:
+        print(f"not in every round: {describe(k)}")
+    if results and n < pairs_needed(len(results)):
+        print(f"note: {len(results)} case(s) need at least {pairs_needed(len(results))} round pairs for an interval "
+              f"(--rounds); these {n} give none, so nothing can be flagged")
+    flagged = [r for r in results if r.flagged]
+    print(f"\n{len(flagged)} of {len(results)} case(s) flagged "
+          f"({sum(r.verdict == 'SLOWER' for r in flagged)} slower, {sum(r.verdict == 'FASTER' for r in flagged)} "
+          f"faster) beyond +-{100 * args.min_effect:g}%")
+    write_table(os.path.join(args.out_dir, "ab.csv"), results)
+    for p in draw(args.out_dir, results, labels):
+        if p.endswith(".png"):
+            print(f"figure: {p}")
+    if failed:
+        print(f"ab.py: failed runs: {', '.join(failed)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

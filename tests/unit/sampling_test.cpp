@@ -1,0 +1,122 @@
+#include "core/sampling.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/stats.hpp"
+
+namespace oitbench {
+
+TEST(Sampling, MedianIntervalNeedsSixSamplesAt95Percent) {
+  EXPECT_EQ(min_samples_for_interval(0.95), 6);
+  EXPECT_FALSE(median_interval({1, 2, 3, 4, 5}).ok);
+  auto ci = median_interval({6, 1, 5, 2, 4, 3});  // k = 1: the extremes (coverage 1 - 2/64)
+  ASSERT_TRUE(ci.ok);
+  EXPECT_DOUBLE_EQ(ci.lo, 1);
+  EXPECT_DOUBLE_EQ(ci.hi, 6);
+}
+
+TEST(Sampling, MedianIntervalUsesBinomialOrderStatistics) {
+  std::vector<double> v;
+  for (int i = 1; i <= 9; ++i) v.push_back(i);
+  auto ci = median_interval(v);  // n = 9: P(B <= 1) = 10/512 <= 0.025, P(B <= 2) = 46/512 > 0.025: k = 2
+  ASSERT_TRUE(ci.ok);
+  EXPECT_DOUBLE_EQ(ci.lo, 2);
+  EXPECT_DOUBLE_EQ(ci.hi, 8);
+  v.clear();
+  for (int i = 1; i <= 100; ++i) v.push_back(i);
+  ci = median_interval(v);  // n = 100: the textbook ranks 40 and 61
+  EXPECT_DOUBLE_EQ(ci.lo, 40);
+  EXPECT_DOUBLE_EQ(ci.hi, 61);
+  EXPECT_NEAR(relative_half_width(ci, 50.5), 10.5 / 50.5, 1e-12);
+}
+
+TEST(Sampling, SampleSizeFromTheWarmUp) {
+  EXPECT_EQ(runs_per_sample(2.0, 20.0), 10);          // 2 ms repetitions: 10 per 20 ms sample
+  EXPECT_EQ(runs_per_sample(3.0, 20.0), 7);           // rounded up: the sample lasts at least 20 ms
+  EXPECT_EQ(runs_per_sample(50.0, 20.0), 1);          // already long enough
+  EXPECT_EQ(runs_per_sample(0.0, 20.0), 1);           // nothing measured
+  EXPECT_EQ(runs_per_sample(0.001, 20.0, 100), 100);  // capped
+  // 64 draws of 434 ms: one draw per run; 64 draws of 1 ms stay 64.
+  EXPECT_EQ(units_per_run(64 * 434.0, 64, 20, 500), 1);
+  EXPECT_EQ(units_per_run(64 * 1.0, 64, 20, 500), 64);
+  EXPECT_EQ(units_per_run(64 * 50.0, 64, 20, 500), 10);  // 10 draws of 50 ms fill 500 ms
+  EXPECT_EQ(units_per_run(64 * 434.0, 64, 20, 0), 64);   // 0: never scaled down
+  EXPECT_EQ(units_per_run(1000.0, 1, 20, 500), 1);       // nothing to scale
+}
+
+// A deterministic workload: a case whose samples scatter by `noise` (relative, uniform) around `ms`.
+std::vector<std::vector<double>> drive(const SamplingPolicy& p, std::vector<double> noise, StopReason& why,
+                                       double ms_per_rep = 10) {
+  std::mt19937 rng(7);
+  std::vector<std::vector<double>> s(noise.size());
+  double spent = 0;  // a fake clock: each repetition of each case takes ms_per_rep
+  while ((why = stop_group(p, s, spent)) == StopReason::Continue) {
+    for (size_t i = 0; i < s.size(); ++i) {
+      std::uniform_real_distribution<double> u(-noise[i], noise[i]);
+      s[i].push_back(ms_per_rep * (1 + u(rng)));
+      spent += ms_per_rep / 1000.0;
+    }
+    if (s[0].size() > 10000) break;  // a rule that never stops fails below
+  }
+  return s;
+}
+
+TEST(Sampling, TheStoppingRuleStopsAtTheTargetForQuietCases) {
+  SamplingPolicy p;
+  p.adaptive = true;
+  StopReason why;
+  auto s = drive(p, {0.01, 0.02}, why);
+  EXPECT_EQ(why, StopReason::Target);
+  EXPECT_EQ(static_cast<int>(s[0].size()), p.min_reps());  // +-2 % is inside +-3 % from the first interval on
+  for (const auto& x : s) EXPECT_LE(relative_half_width(median_interval(x), median_of(x)), p.target_ci);
+  EXPECT_EQ(ci_note(p, s[0], why), "");
+}
+
+TEST(Sampling, ANoisyCaseHoldsItsGroupUntilItsIntervalIsNarrow) {
+  SamplingPolicy p;
+  p.adaptive = true;
+  p.max_reps = 1000;
+  p.max_case_s = 1e9;
+  StopReason why;
+  auto s = drive(p, {0.01, 0.15}, why);  // +-15 %: needs many more than 6 repetitions
+  EXPECT_EQ(why, StopReason::Target);
+  EXPECT_GT(s[1].size(), 20u);
+  EXPECT_EQ(s[0].size(), s[1].size());  // interleaved: every case of the group ran every round
+  EXPECT_LE(relative_half_width(median_interval(s[1]), median_of(s[1])), p.target_ci);
+}
+
+TEST(Sampling, LimitsStopWhatTheTargetCannot) {
+  SamplingPolicy p;
+  p.adaptive = true;
+  p.max_reps = 12;
+  StopReason why;
+  auto s = drive(p, {0.5}, why);
+  EXPECT_EQ(why, StopReason::MaxReps);
+  EXPECT_EQ(s[0].size(), 12u);
+  EXPECT_NE(ci_note(p, s[0], why).find("stopped by --max-reps 12"), std::string::npos) << ci_note(p, s[0], why);
+
+  p.max_reps = 1000;
+  p.max_case_s = 0.45;  // two cases of 100 ms each: 0.9 s in all, reached in round 5
+  s = drive(p, {0.5, 0.5}, why, 100);
+  EXPECT_EQ(why, StopReason::MaxTime);
+  EXPECT_EQ(s[0].size(), 5u);
+  EXPECT_NE(ci_note(p, s[0], why).find("too few"), std::string::npos) << ci_note(p, s[0], why);
+}
+
+TEST(Sampling, AFixedCountIsKeptAndFlaggedWhenItGivesNoInterval) {
+  SamplingPolicy p;
+  p.reps = 2;
+  StopReason why;
+  auto s = drive(p, {0.0}, why);
+  EXPECT_EQ(why, StopReason::Fixed);
+  EXPECT_EQ(s[0].size(), 2u);
+  EXPECT_EQ(ci_note(p, s[0], why), "2 sample(s): too few for a 95% interval of the median (6 needed)");
+  p.reps = 7;
+  s = drive(p, {0.5}, why);
+  EXPECT_EQ(s[0].size(), 7u);
+  EXPECT_EQ(ci_note(p, s[0], why), "");  // a fixed count is not held to the target
+}
+
+}  // namespace oitbench
