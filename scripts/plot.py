@@ -880,32 +880,45 @@ def error_vs_memory(ax, rows, column, title, params, labels):
 
 def stacked_passes(ax, rows, totals, params, labels, title, legend=True):
     """One bar per case (labelled on every parameter that tells cases apart): its named passes stacked,
-    each pass in its own colour (the same in every figure), the measured total as a black tick."""
+    each pass in its own colour (the same in every figure), the measured total as a black tick. A case
+    measured more than once in the file (a baseline run in every interleaving group of the cases it is
+    the baseline of) is one bar at the median of its rows, its label saying how many."""
     cases = sorted({case_id(r, params) for r in totals}, key=lambda c: labels[c])
-    total_of = {case_id(r, params): r for r in totals}
+    total_of = {}
+    for r in totals:
+        total_of.setdefault(case_id(r, params), []).append(r)
     passes = [p for p in sorted({r["pass"] for r in rows}, key=lambda p: (
         PASS_ORDER.index(p) if p in PASS_ORDER else 99, p)) if p != "total"]
     cell = {}
     for r in rows:
         cid = case_id(r, params)
-        if cid in total_of and r.get("width") == total_of[cid].get("width"):
-            cell[(cid, r["pass"])] = r
+        if cid in total_of and r.get("width") == total_of[cid][0].get("width") and r["pass"] != "total":
+            cell.setdefault((cid, r["pass"]), []).append(r)
+
+    def median_of(rs):
+        vs = sorted(v for v in (value(r) for r in rs) if v is not None)
+        if not vs:
+            return 0.0
+        mid = len(vs) // 2
+        return vs[mid] if len(vs) % 2 else 0.5 * (vs[mid - 1] + vs[mid])
+
     bottom = [0.0] * len(cases)
     for p in passes:
         ys = []
         for cid in cases:
-            r = cell.get((cid, p))
-            ys.append(value(r) if r is not None else 0.0)
-            if r is not None:
-                mark([r])
+            rs = cell.get((cid, p), [])
+            ys.append(median_of(rs))
+            mark(rs)
         ax.bar(range(len(cases)), ys, bottom=bottom, label=p, color=pass_colour(p))
         bottom = [b + y for b, y in zip(bottom, ys)]
-    tot = [value(total_of[c]) for c in cases]
-    mark(list(total_of.values()))
+    tot = [median_of(total_of[c]) for c in cases]
+    for rs in total_of.values():
+        mark(rs)
     ax.scatter(range(len(cases)), tot, marker="_", s=300, color="black", zorder=3, label="total (measured)")
     ax.set_xlim(-0.6, len(cases) - 0.4)
     ax.set_xticks(range(len(cases)))
-    ax.set_xticklabels([labels[c] for c in cases], rotation=40, ha="right", fontsize=8)
+    ax.set_xticklabels([labels[c] + (f" (x{len(total_of[c])}, median)" if len(total_of[c]) > 1 else "")
+                        for c in cases], rotation=40, ha="right", fontsize=8)
     ax.set_ylabel("median time (ms)")
     ax.grid(True, axis="y", alpha=0.3)
     ax.set_title(title)
