@@ -178,7 +178,7 @@ int run_cli(int argc, char** argv) {
   run->add_option("--target-ci", target_ci_pct,
                   "Repeat until the 95% interval of each case's median is within +-this % (default 3); --reps N "
                   "fixes the count instead")
-      ->check(CLI::Range(0.01, 100.0))
+      ->check(CLI::Range(0.01, 1000.0))
       ->group(sizing);
   run->add_option("--max-reps", ropt.sampling.max_reps, "At most this many timed repetitions per case (default 30)")
       ->check(CLI::Range(2, 100000))

@@ -209,10 +209,12 @@ TEST(Cli, CtrlCLeavesAParseableCsvWithTheFinishedRows) {
 TEST(Cli, TheWatchdogEndsAHungCaseAndTheRunGoesOn) {
   auto out = temp_dir("hang") / "h.csv";
   // On llvmpipe a "hang" is finite (every shader loop ends after 65535 iterations): at 400x300 the hung
-  // case would run ~35 s on a quiet 2-core VM, well past the 4 s watchdog (at the quick 200x150, 9 s).
+  // case would run ~35 s on a quiet 2-core VM, well past the 4 s watchdog (at the quick 200x150, 9 s), as long
+  // as the sampler does not scale the hung repetition down to one draw (--max-sample-ms 0).
   auto r = run_oitbench(
-      {"run", "occupancy", "--quick", "--resolution", "400x300", "--set", "variant=dynamic", "--set", "size=1", "--set",
-       "fault=hang,none", "--isolate", "always", "--timeout", "4", "--out", out.string(), "--no-progress"},
+      {"run",   "occupancy",       "--quick", "--resolution",    "400x300",    "--set",        "variant=dynamic",
+       "--set", "size=1",          "--set",   "fault=hang,none", "--isolate",  "always",       "--timeout",
+       "4",     "--max-sample-ms", "0",       "--out",           out.string(), "--no-progress"},
       120);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   auto rows = read_csv_rows(out);

@@ -206,6 +206,8 @@ std::vector<std::string> long_repetition_run(const fs::path& out) {
           "size=1",
           "--set",
           "fault=none,hang",
+          "--max-sample-ms",  // the hung repetition keeps all its draws
+          "0",
           "--resolution",
           "1200x900",
           "--reps",
@@ -279,10 +281,10 @@ TEST(Faults, AKilledParentTakesItsIsolatedCaseWithItAndTheNextRunRemovesItsFolde
   auto tmp = dir / "tmp";
   fs::create_directories(tmp);
   auto out = dir / "run.csv";
-  Running run(
-      {"run", "occupancy", "--quick", "--resolution", "400x300", "--set", "variant=dynamic", "--set", "size=1", "--set",
-       "fault=hang", "--isolate", "always", "--timeout", "600", "--out", out.string(), "--no-progress"},
-      dir, {{"TMPDIR", tmp.string()}});
+  Running run({"run",   "occupancy",       "--quick", "--resolution", "400x300",    "--set",        "variant=dynamic",
+               "--set", "size=1",          "--set",   "fault=hang",   "--isolate",  "always",       "--timeout",
+               "600",   "--max-sample-ms", "0",       "--out",        out.string(), "--no-progress"},
+              dir, {{"TMPDIR", tmp.string()}});
   fs::path case_dir;
   ASSERT_TRUE(run.wait_for(
       [&] {

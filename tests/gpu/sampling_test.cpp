@@ -76,14 +76,16 @@ TEST(Sampling, ScalableWorkRunsFewerUnitsScaledBack) {
 
 TEST(Sampling, TheStoppingRuleStopsAtItsTargetOrSaysWhyNot) {
   // A loose target is met by the first interval (6 samples); an impossible one runs to --max-reps and says so.
+  // Loose is +-1000%: +-100% was missed once on a busy machine, where one of six sub-millisecond samples
+  // took three times the median.
   auto loose = run_rows("loose", {"occupancy", "--set", "variant=dynamic", "--set", "size=1", "--set", "draws=4",
-                                  "--resolution", "32x32", "--target-ci", "100", "--max-reps", "20"});
+                                  "--resolution", "32x32", "--target-ci", "1000", "--max-reps", "20"});
   ASSERT_EQ(loose.size(), 1u);
   EXPECT_EQ(loose[0]["stop"], "target") << loose[0]["reason"];
   EXPECT_EQ(loose[0]["reps"], "6");
   EXPECT_EQ(loose[0]["samples"], "6");
-  EXPECT_EQ(loose[0]["target_ci_pct"], "100");
-  EXPECT_LE(num(loose[0], "ci_pct"), 100);
+  EXPECT_EQ(loose[0]["target_ci_pct"], "1000");
+  EXPECT_LE(num(loose[0], "ci_pct"), 1000);
 
   auto tight = run_rows("tight", {"occupancy", "--set", "variant=dynamic", "--set", "size=1", "--set", "draws=4",
                                   "--resolution", "32x32", "--target-ci", "0.01", "--max-reps", "8"});
