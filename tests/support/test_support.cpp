@@ -103,6 +103,9 @@ std::filesystem::path temp_dir(const std::string& name) {
   auto base = std::filesystem::temp_directory_path() / ("oitbench-test-" + std::to_string(getpid()));
   static int counter = 0;
   auto dir = base / (name + "-" + std::to_string(counter++));
+  // A folder left by an earlier test process with the same pid would hand this test its old files (a CSV
+  // of an older header to append to): start empty.
+  std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
 }
