@@ -325,10 +325,15 @@ class Runner {
       }
     }
     // Timed repetitions, interleaved, until the stopping rule says the group has enough.
-    const auto timed_start = Clock::now();
+    auto timed_start = Clock::now();  // restarted when a round is taken as warm-up (below)
     StopReason why = StopReason::Continue;
+    // The first rounds check the sample sizes again: a round after a JIT-laden warm-up (or after a resize
+    // chosen from such a round) can still be slow, so each check sizes from the round just run, until a
+    // round needs no resize or kMaxSizeChecks rounds were taken as warm-up.
+    constexpr int kMaxSizeChecks = 4;
+    int size_checks = 0;
     bool checked_size = false;
-    std::vector<Row> first_round_raw;  // the first round's raw rows wait until its sizes are confirmed
+    std::vector<Row> first_round_raw;  // a checked round's raw rows wait until its sizes are confirmed
     for (int r = 0; !stop_now(); ++r) {
       std::vector<std::vector<double>> totals;
       for (const auto& c : live)
@@ -361,7 +366,7 @@ class Runner {
       if (!checked_size) {
         // A sample shorter than half of --min-sample-ms was sized from a warm-up that held the JIT: size it
         // from this round and take the round as one more warm-up, for every case of the group alike.
-        checked_size = true;
+        ++size_checks;
         bool resized = false;
         for (size_t i = 0; i < live.size(); ++i) {
           auto& rec = live[i].record;
@@ -384,13 +389,15 @@ class Runner {
           rec.sample_runs = runs_per_sample(sample_ms / rec.sample_runs, policy.min_sample_ms);
           resized = true;
         }
+        checked_size = !resized || size_checks >= kMaxSizeChecks;
         if (resized) {
           for (auto& c : live) {
             c.record.cpu.clear();
             c.record.gpu.clear();
           }
           first_round_raw.clear();
-          r = -1;  // the next round is the first timed one again
+          timed_start = Clock::now();  // a round taken as warm-up is not timed work
+          r = -1;                      // the next round is the first timed one again
         } else if (raw_writer_) {
           write(*raw_writer_, first_round_raw);
         }
