@@ -13,8 +13,10 @@ class Registry;
 
 // 2: parameters scoped to the cases they apply to (others empty), max_frags_used, sort_source,
 // the output path `dump` no longer a parameter. 3: the GPU state columns (gpu_driver_version,
-// gpu_*_start/end), occupancy's measured_occupancy and measured_occupancy_note.
-inline constexpr int kCsvSchema = 3;
+// gpu_*_start/end), occupancy's measured_occupancy and measured_occupancy_note. 4: samples sized by
+// their statistics and paired speedups (ci_lo_ms, ci_hi_ms, ci_pct, target_ci_pct, stop, sample_runs,
+// sample_units, baseline, speedup, speedup_ci_lo/hi), the new oit metrics (node_buffers, ...).
+inline constexpr int kCsvSchema = 4;
 
 enum class Status { Ok, Invalid, Unsupported, Error, Timeout };
 inline constexpr Status kAllStatuses[] = {Status::Ok, Status::Invalid, Status::Unsupported, Status::Error,
