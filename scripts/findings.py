@@ -68,6 +68,21 @@ def ms(row):
     return num(row, "median_ms")
 
 
+def reps_text(rows):
+    """How many repetitions the rows had: one count where the preset fixed it, else the range the stopping
+    rule chose and its target (a preset without "reps" repeats until the interval is narrow enough)."""
+    counts = sorted({int(float(r["reps"])) for r in rows if r.get("reps") not in ("", None)})
+    if not counts:
+        return "? repetitions"
+    n = str(counts[0]) if len(counts) == 1 else f"{counts[0]}–{counts[-1]}"
+    text = f"{n} repetition" + ("" if counts == [1] else "s")
+    if {r.get("stop", "") for r in rows} - {"", "fixed"}:
+        targets = sorted({r.get("target_ci_pct", "") for r in rows} - {""})
+        target = f" ±{targets[0]}%" if len(targets) == 1 else ""
+        text += f", until the median's 95% interval is within{target} or a limit stops it"
+    return text
+
+
 class Results:
     """The summary CSVs of RESULTS_DIR/presets, by preset file name, and the papers' rows."""
 
@@ -84,6 +99,10 @@ class Results:
 
     def run(self, name):
         return self.runs.get(name)
+
+    def reps(self, name, row):
+        """The repetitions of preset `name`'s rows of `row`'s experiment, as text (reps_text)."""
+        return reps_text(self.rows(name, row["experiment"], pass_=None, valid=False))
 
     def rows(self, name, experiment, pass_="total", valid=True, where=None, **eq):
         """Rows of preset `name`'s `experiment` and pass (None: any) whose columns equal `eq`."""
@@ -391,7 +410,7 @@ def section_occupancy(f):
     sizes = sorted({s for _, s in per})
     r0 = rows[0]
     lines += [f"`presets/{name}.csv`: {res(r0)}, {r0['draws']} full-screen draws per repetition, "
-              f"{r0['reps']} repetitions; milliseconds per draw (`median_ms / draws`).", ""]
+              f"{f.reps(name, r0)}; milliseconds per draw (`median_ms / draws`).", ""]
     body = [[s, f_ms(per.get(("dynamic", s))), f_ms(per.get(("unrolled", s))),
              f_x(ratio(per.get(("dynamic", s)), per.get(("unrolled", s))))] for s in sizes]
     lines += table(["SIZE", "dynamic ms/draw", "unrolled ms/draw", "dynamic / unrolled"], body)
@@ -468,7 +487,7 @@ def section_sort(f):
     sort = f.rows(name, "sort")
     r0 = sort[0] if sort else {}
     lines += [f"`presets/{name}.csv`: {res(r0) if r0 else '?'}, {r0.get('stage', '?')} stage, "
-              f"{r0.get('keys', '?')} keys, {r0.get('reps', '?')} repetitions; time ratios of `total` medians "
+              f"{r0.get('keys', '?')} keys, {f.reps(name, r0)}; time ratios of `total` medians "
               "(A / B below 1: A is faster). The thesis's from results/published (GTX 1080, 800x800).", ""]
     a1 = "naive insertion, dynamic index assignment: "
     comparisons = [(f"A.1: {v} / loop", "sort-bench", a1 + v, a1 + "loop", "total_time")
@@ -595,7 +614,7 @@ def section_layout(f):
                 th.append(f_x(ratio(a["paper"], b["paper"])) if a and b else DASH)
             row.append(" / ".join(th))
         body.append(row)
-    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['layers']} layers, {r0['reps']} repetitions): time / "
+    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['layers']} layers, {f.reps(name, r0)}): time / "
               f"`ssbo` of the `total` medians; the thesis's MLAB times ({' / '.join(scenes)}) likewise.", ""]
     lines += table(["layout"] + [f"nodes {n}" for n in nodes] + [f"thesis, {n} nodes" for n in nodes], body)
     for lay, label in (("texture3d", "`texture3d` (image load/store)"), ("texbuffer", "The buffer-texture read path")):
@@ -647,7 +666,7 @@ def section_spinlock(f):
                 row.append(oitcsv.status_of(r) if r else DASH)
         body.append(row)
     r0 = spin[0]
-    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['reps']} repetitions, each case in a child process "
+    lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}, each case in a child process "
               "under the watchdog): `total` ms, and the time over `naive` in brackets.", ""]
     lines += table(["layers"] + [f"`{v}`" for v in variants], body)
     ok = [r for r in spin if oitcsv.is_ok(r)]
@@ -686,8 +705,8 @@ def section_stencil(f):
             clear.append(ratio(s("no-stencil", rv, c, "clear"), s("no-stencil", rv, c, "total")))
         body.append(row)
     r0 = st[0]
-    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['nodes']} nodes, {r0['layers']} layers, {r0['reps']} "
-              "repetitions): stencil / no stencil, by the band's coverage of the screen.", ""]
+    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['nodes']} nodes, {r0['layers']} layers, {f.reps(name, r0)}"
+              "): stencil / no stencil, by the band's coverage of the screen.", ""]
     lines += table(["coverage"] + [f"{rv} {p}" for rv in resolves for p in ("resolve", "total")], body)
     a4 = f.paper_pairs(name, "bruell-A.4")
     a5 = f.paper_pairs(name, "bruell-A.5")
@@ -853,7 +872,7 @@ def section_knowles2014(f):
     views = sorted(rsp, key=lambda k: (scene_key(k[0]), view_key(k[1])))
     techs = [t for t in EXACT_SHADER + ["CPU-NATIVE"] if t != "BASE-IS" and any(t in rsp[v] for v in views)]
     r0 = f.rows(name, "oit")[0]
-    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['reps']} repetitions, register blocks of {r0.get('block', '?')}): "
+    lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}, register blocks of {r0.get('block', '?')}): "
               "speedup over BASE-IS (time of BASE-IS / time) per view, the paper's (GTX Titan, 1920x1080) in "
               "brackets; the engine grid stands in for the power plant, the house for the atrium, CS-* for the "
               "paper's CUDA-* rows.", ""]
@@ -986,6 +1005,18 @@ def resolve_label(r):
     return label
 
 
+def speedup_text(entry, pass_):
+    """1.23x, with its 95% interval where the row's own pair gave one (not for a chained ratio)."""
+    v = entry.get(pass_)
+    if not v:
+        return DASH
+    text = tables.fmt(v, 3) + "x"
+    lo, hi = entry.get(pass_ + "_ci") or (None, None)
+    if lo is not None and hi is not None and not entry.get("chained_" + pass_):
+        text += f" [{tables.fmt(lo, 3)}–{tables.fmt(hi, 3)}]"
+    return text
+
+
 def section_resolve_speedups(f):
     name = "resolve-speedups"
     lines = ["## The fastest exact resolve, paired", ""]
@@ -994,12 +1025,15 @@ def section_resolve_speedups(f):
     oit = f.rows(name, "oit", pass_="resolve", valid=False)
     if oit:
         r0 = oit[0]
-        lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['reps']} repetitions): the oit experiment interleaves two "
-                  "cases at a time, so each candidate ran in one group with BASE-IS and its speedup (BASE-IS "
-                  "time / its time) is a ratio of medians taken side by side; CS-IS with the order check was "
-                  "paired with BASE-IS with it and chained through that one's pair. `resolve` and `total` "
-                  "passes; blocks of 32 for CS-RBS-L. Goals: the paper's best resolve speedup on planes rev "
-                  f"({RESOLVE_GOAL_REV:g}x) and {RESOLVE_GOAL_FWD:g}x on every fwd view.", ""]
+        paired = any(r.get("speedup") for r in oit)
+        lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}): the oit experiment interleaves two "
+                  "cases at a time, so each candidate ran in one group with its baseline and its speedup "
+                  "(baseline time / its time) is a ratio of medians taken side by side"
+                  + (" (the rows' `speedup`: the median of the per-repetition ratios)" if paired else "")
+                  + ". The order check's candidates are paired with BASE-IS with the order check, chained "
+                  "through that one's pair with plain BASE-IS, so every speedup below is over plain BASE-IS. "
+                  "`resolve` and `total` passes; blocks of 32 for CS-RBS-L. Goals: the paper's best resolve "
+                  f"speedup on planes rev ({RESOLVE_GOAL_REV:g}x) and {RESOLVE_GOAL_FWD:g}x on every fwd view.", ""]
         speed, base_ms = {}, {}
         for pass_ in ("resolve", "total"):
             by_view = {}
@@ -1007,7 +1041,33 @@ def section_resolve_speedups(f):
                 by_view.setdefault((r["scene"], r["view"]), []).append(r)
             for view, rows in by_view.items():
                 sp = speed.setdefault(view, {})
-                for a, b in zip(rows[0::2], rows[1::2]):  # the run's groups of two, in the order they ran
+                if paired:
+                    # Schema 4: each row carries its paired speedup over its baseline; a baseline measured in
+                    # several groups has rows without one (its own), kept for its times only.
+                    for r in rows:
+                        label = resolve_label(r)
+                        if label == "BASE-IS" and pass_ == "resolve" and ms(r) is not None:
+                            base_ms.setdefault(view, []).append(ms(r))
+                        entry = sp.setdefault(label, {"row": r})
+                        if label == "BASE-IS":
+                            entry[pass_], entry[pass_ + "_ms"] = 1.0, ms(r) if oitcsv.is_ok(r) else None
+                            continue
+                        value = num(r, "speedup") if oitcsv.is_ok(r) else None
+                        if value is None and entry.get(pass_) is not None:
+                            continue  # the same case as another pair's baseline: keep the paired row
+                        entry["row"] = r
+                        entry[pass_ + "_ms"] = ms(r) if oitcsv.is_ok(r) else None
+                        entry[pass_] = value
+                        entry[pass_ + "_ci"] = (num(r, "speedup_ci_lo"), num(r, "speedup_ci_hi"))
+                    # Candidates with the order check were divided by BASE-IS with it: chain to plain BASE-IS.
+                    link = sp.get("BASE-IS+order-check", {}).get(pass_)
+                    for label, entry in sp.items():
+                        if label.endswith("+order-check") and label != "BASE-IS+order-check":
+                            if entry.get(pass_) is not None and entry.get("chained_" + pass_) is None:
+                                entry["chained_" + pass_] = True
+                                entry[pass_] = entry[pass_] * link if link else None
+                    continue
+                for a, b in zip(rows[0::2], rows[1::2]):  # schema 3: the run's groups of two, in the order they ran
                     la, lb = resolve_label(a), resolve_label(b)
                     if la == "BASE-IS" and pass_ == "resolve" and ms(a) is not None:
                         base_ms.setdefault(view, []).append(ms(a))
@@ -1024,8 +1084,7 @@ def section_resolve_speedups(f):
             for label in order:
                 c = cases[label]
                 body.append([f"{view[0]} {view[1]}", label, f_ms(c.get("resolve_ms")),
-                             tables.fmt(c.get("resolve"), 3) + "x" if c.get("resolve") else DASH,
-                             tables.fmt(c.get("total"), 3) + "x" if c.get("total") else DASH])
+                             speedup_text(c, "resolve"), speedup_text(c, "total")])
             if order and cases[order[0]].get("resolve"):
                 best = cases[order[0]]
                 goal = RESOLVE_GOAL_REV if view == ("planes", "rev") else RESOLVE_GOAL_FWD if view[1] == "fwd" else None
@@ -1085,7 +1144,7 @@ def section_knowles2013(f):
                      f"{f_paper(p)} ({pscene})" if p is not None else DASH, f_x(a),
                      f_ms(g.get(("BASE-IS", "resolve")))])
     r0 = f.rows(name, "oit")[0]
-    lines += [f"`presets/{name}.csv` ({r0['reps']} repetitions): `total` ms and the speedup over BASE-IS "
+    lines += [f"`presets/{name}.csv` ({f.reps(name, r0)}): `total` ms and the speedup over BASE-IS "
               "(the paper's OIT); the paper's BMA-OIT speedup on its GPU (GTX 670, 1680x1050) for the scene "
               "our stand-in replaces.", ""]
     lines += table(["scene", "view", "resolution", "MAX_FRAGS", "BASE-IS", "BMA-IS", "BMA-IS speedup",
@@ -1120,7 +1179,7 @@ def section_scale(f):
                      max_frags_used(r), status, f_m(num(r, "total_fragments")), f_mb(num(r, "node_pool_bytes")),
                      f_m(num(r, "fragments_per_s")), f_ms(ms(r)) if status == "ok" else DASH])
     r0 = f.rows(name, "oit", valid=False)[0]
-    lines += [f"`presets/{name}.csv` ({r0['reps']} repetition, every case validated): fragments, the storage's "
+    lines += [f"`presets/{name}.csv` ({f.reps(name, r0)}, every case validated): fragments, the storage's "
               "memory (`node_pool_bytes`), capture rate and `total` ms. Why a case is not ok: above.", ""]
     lines += table(["scene", "detail", "view", "resolution", "capture", "technique", "MAX_FRAGS", "status",
                     "fragments", "memory", "fragments/s", "total ms"], body, [False] * 8 + [True] * 4)
@@ -1172,7 +1231,7 @@ def section_approx(f):
                                           (f_ms(ms(cases[k].get(s))), f_err(num(cases[k].get(s), "rmse")))])
     r0 = rows[0]
     lines += [f"`presets/{name}.csv` ({res(r0)}, `{r0.get('detail', '')}` scenes, view {r0['view']}, "
-              f"{r0['reps']} repetitions): `total` ms and rmse against the exact CPU reference; per-pixel-array "
+              f"{f.reps(name, r0)}): `total` ms and rmse against the exact CPU reference; per-pixel-array "
               "techniques are TECHNIQUE/nodes and their storage.", ""]
     lines += table(["technique"] + [x for s in scenes for x in (f"{s} ms", f"{s} rmse")], body)
 
@@ -1279,7 +1338,7 @@ def section_error_vs_time(f):
                      f"{plot.oit_label(fe)} {f_ms(ms(fe))}" if fe else DASH,
                      f"{plot.oit_label(fa)} {f_ms(ms(fa))}" if fa else DASH, f_x(ratio(ms(fa), ms(fe)))])
     r0 = rows[0]
-    lines += [f"`presets/{name}.csv` ({r0['reps']} repetitions): the Pareto front of each scene (no technique "
+    lines += [f"`presets/{name}.csv` ({f.reps(name, r0)}): the Pareto front of each scene (no technique "
               f"both faster and more exact; `total` ms / rmse, rmse floored at {tables.fmt(RMSE_FLOOR, 1)} so the "
               "exact ones tie), the fastest exact resolve and the fastest per-pixel-array approximation (ms). "
               "The figure: [report/figures/presets/error-vs-time/oit.png]"
@@ -1332,7 +1391,7 @@ def section_lines(f):
                      f"{tables.fmt(poster[n], 3)} ({models[n]})" if n in poster else DASH,
                      f_err(num(srow[0], "rmse")) if srow else DASH])
     r0 = f.rows(name, "lines")[0]
-    lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['reps']} repetitions, {r0.get('slices', '?')} slices): "
+    lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}, {r0.get('slices', '?')} slices): "
               "per-fragment exact OIT against the per-primitive slice sort; the poster's frame rate on its GPU.", ""]
     lines += table(["segments", "fragments", "peak depth", "exact total ms", "slices total ms (keys / sort / blend)",
                     "slices fps", "poster fps", "slices rmse"], body)

@@ -27,6 +27,7 @@ unreadable input (the message names the file or folder), or an output folder tha
 """
 import argparse
 import collections
+import csv
 import html
 import os
 import re
@@ -690,6 +691,99 @@ def fastest_section(page, inputs, out_dir, failures):
     return 1
 
 
+def ab_comparisons(dirs):
+    """(label, folder, [ab.csv paths], SUMMARY.txt or None) for each A/B comparison under `dirs` (scripts/ab.py
+    out folders): a folder of trials (trial-*/ab.csv, with ab.py --summarize's SUMMARY.txt) is one comparison,
+    as is a lone ab.csv."""
+    found = []
+    for top in dirs:
+        for root, subdirs, files in os.walk(top):
+            subdirs.sort()
+            trials = sorted((os.path.join(root, d, "ab.csv") for d in subdirs
+                             if d.startswith("trial-") and os.path.isfile(os.path.join(root, d, "ab.csv"))),
+                            key=lambda q: [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", q)])
+            if trials:
+                summary = os.path.join(root, "SUMMARY.txt")
+                found.append((os.path.relpath(root, os.path.dirname(os.path.normpath(top))), root, trials,
+                              summary if os.path.isfile(summary) else None))
+                subdirs[:] = [d for d in subdirs if not d.startswith("trial-")]
+            elif "ab.csv" in files:
+                found.append((os.path.relpath(root, os.path.dirname(os.path.normpath(top))), root,
+                              [os.path.join(root, "ab.csv")], None))
+    return found
+
+
+def ab_figure(entries, title):
+    """Paired ratios per round (|), their median (o) and interval (line; red where flagged), one line per
+    (trial, case)."""
+    fig, ax = plot.plt.subplots(figsize=(9, 1.4 + 0.3 * len(entries)))
+    for y, (label, ratios, lo, hi, ratio, flagged) in enumerate(entries):
+        colour = "red" if flagged else "C0"
+        ax.plot(ratios, [y] * len(ratios), "|", color="grey", markersize=8)
+        if lo is not None and hi is not None:
+            ax.plot([lo, hi], [y, y], color=colour, linewidth=2)
+        ax.plot([ratio], [y], "o", color=colour)
+    ax.axvline(1.0, color="black", linewidth=0.8)
+    ax.set_yticks(range(len(entries)))
+    ax.set_yticklabels([e[0] for e in entries], fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel("B / A: paired ratio per round pair (|), median (o) and interval (line; red: flagged)")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, axis="x", alpha=0.3)
+    return fig
+
+
+def ab_section(page, dirs, out_dir, failures):
+    """The A/B comparisons (scripts/ab.py, scripts/ab_bench.sh) under `dirs`: each one's summary or table
+    and a figure of its paired ratios. Returns how many comparisons were shown."""
+    comparisons = ab_comparisons(dirs)
+    if not comparisons:
+        return 0
+    page.section(2, "ab", "A/B comparisons")
+    page.add("<p>Whole runs of two configurations alternated in rounds A B B A &hellip; "
+             "(<code>scripts/ab.py</code>; repeated trials by <code>scripts/ab_bench.sh</code>), compared round "
+             "pair by round pair: the ratio is the median of B/A over the pairs, its interval the order statistics "
+             "of those ratios, a case is flagged when the interval lies wholly beyond &plusmn;1%. See "
+             "docs/ab-measurements.md for what each comparison ran.</p>")
+    for label, folder, paths, summary in comparisons:
+        page.section(3, "ab-" + slug(label), label)
+        entries, rows_html = [], []
+        for path in paths:
+            with open(path, newline="", encoding="utf-8") as f:
+                rows = list(csv.DictReader(f))
+            trial = os.path.basename(os.path.dirname(path)) if len(paths) > 1 else ""
+            for r in rows:
+                ratios = [float(x) for x in r.get("pair_ratios", "").split(";") if x]
+                lo = float(r["ci_low"]) if r.get("ci_low") else None
+                hi = float(r["ci_high"]) if r.get("ci_high") else None
+                name = f"{r['case']} {r['pass']}" + (f" ({trial})" if trial else "")
+                entries.append((name, ratios, lo, hi, float(r["ratio"]), r.get("flagged") == "1"))
+                if not trial:
+                    rows_html.append([esc(r["case"]), esc(r["pass"]), f"{float(r['ratio']):.3f}",
+                                      f"{lo:.3f}&ndash;{hi:.3f}" if lo is not None and hi is not None else "&mdash;",
+                                      esc(r.get("noise_pct", "")), esc(r.get("verdict", "")), esc(r.get("pairs", ""))])
+        if summary:
+            with open(summary, encoding="utf-8") as f:
+                page.add(f"<pre>{esc(f.read().strip())}</pre>")
+        if rows_html:
+            page.add(html_table(["case", "pass", "B / A", "interval", "noise %", "verdict", "round pairs"],
+                                rows_html, numeric=[False, False, True, False, True, False, True]))
+        rel = os.path.join("figures", "ab", slug(label))
+        stem = os.path.join(out_dir, rel)
+        os.makedirs(os.path.dirname(stem), exist_ok=True)
+        print(f"report.py: figure: A/B {label}", flush=True)
+        try:
+            flagged = sum(e[5] for e in entries)
+            plot.save(ab_figure(entries, f"{label}: {flagged} of {len(entries)} flagged"), stem)
+            page.add(f'<figure><a href="{url(rel + ".svg")}">'
+                     f"{img_tag(rel + '.png', stem + '.png', 'A/B ' + label, 'summary-figure')}</a>"
+                     f'<figcaption>{esc(label)} &middot; <a href="{url(rel + ".svg")}">SVG</a></figcaption></figure>')
+        except Exception as e:  # a figure bug on odd data must not cost the rest of the page
+            plot.plt.close("all")
+            failures.append(f"A/B {label}: {type(e).__name__}: {e}")
+    return len(comparisons)
+
+
 def tables_section(page, inputs, paper_dir, shown_paper_dir, out_dir=None, failures=None):
     """The paper tables with any of our rows, one per (table, run) with rows, and beside each the figure
     of the paper's speedups against ours (the run opened by default); returns how many tables."""
@@ -1227,7 +1321,10 @@ def build(args):
         raise oitcsv.ResultsError(f"{args.images}: no such images folder (--images)")
     pages = []
     inputs, skipped, base = collect(args.inputs, args.out_dir, images_dir, pages)
-    for p in [base] + ([images_dir] if images_dir else []):
+    for d in args.ab or []:
+        if not os.path.isdir(d):
+            raise oitcsv.ResultsError(f"--ab {d}: not a folder (give scripts/ab.py's or ab_bench.sh's out folder)")
+    for p in [base] + ([images_dir] if images_dir else []) + list(args.ab or []):
         out, inside = os.path.realpath(args.out_dir), os.path.realpath(p)
         if out == inside or inside.startswith(out + os.sep):
             raise oitcsv.ResultsError(f"{args.out_dir}: the report would overwrite its own inputs ({p}); "
@@ -1250,12 +1347,13 @@ def build(args):
     n_figures = sum(run_block(page, inp, f, shared, args.out_dir, failures) for inp, f in zip(inputs, facts))
     n_fastest = fastest_section(page, inputs, args.out_dir, failures)
     n_tables = tables_section(page, inputs, paper_dir, args.paper or shown_path(paper_dir), args.out_dir, failures)
+    n_ab = ab_section(page, args.ab, args.out_dir, failures) if args.ab else 0
     n_images = gallery_section(page, images_dir, args.out_dir) if images_dir else 0
     with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8", newline="\n") as f:
         f.write(page.render())
     write_file_list(args.out_dir, since)
     counts = [plural(len(inputs), "run"), plural(n_figures, "figure"), plural(n_tables, "paper table"),
-              "a fastest-technique summary" if n_fastest else None,
+              "a fastest-technique summary" if n_fastest else None, plural(n_ab, "A/B comparison") if n_ab else None,
               plural(n_images, "image")] + ([plural(len(skipped), "CSV") + " left out"] if skipped else [])
     print(f"report.py: {os.path.join(args.out_dir, 'index.html')}: {', '.join(c for c in counts if c)}")
     for fail in failures:
@@ -1273,6 +1371,9 @@ def main(argv=None):
     ap.add_argument("--images", help="folder of `oitbench render` PNGs (default: images/ in the results folder, "
                                      "or beside the first CSV, when there is one)")
     ap.add_argument("--title", help="the page's title (default: oitbench report: FOLDER)")
+    ap.add_argument("--ab", nargs="+", action="extend", metavar="DIR",
+                    help="folders of A/B comparisons (scripts/ab.py out folders, or scripts/ab_bench.sh's, e.g. "
+                         "results/ab-llvmpipe): a section with each one's table or trial summary and a figure")
     cmp = ap.add_argument_group("comparison page", "scripts/report.py --compare A B -o DIR: the presets both "
                                 "results folders ran (A/presets/NAME.csv beside B/presets/NAME.csv, with "
                                 "NAME_raw.csv when there is one), case by case, as ratios B/A with 95% intervals "
@@ -1286,8 +1387,8 @@ def main(argv=None):
     if args.compare:
         if args.inputs:
             ap.error("give CSV_OR_DIR inputs or --compare A B, not both")
-        if args.paper or args.images:
-            ap.error("--paper and --images are for the report of runs, not --compare")
+        if args.paper or args.images or args.ab:
+            ap.error("--paper, --images and --ab are for the report of runs, not --compare")
         if args.labels and len(args.labels.split(",")) != 2:
             ap.error("--labels takes two names: A,B")
     elif not args.inputs:

@@ -254,6 +254,44 @@ class ReportContent(ReportCase):
         self.assertTrue(os.path.isfile(self.path("busy/keep.txt")))
 
 
+AB_HEADER = "experiment,case,pass,ratio,ci_low,ci_high,noise_pct,verdict,flagged,pairs,pair_ratios\n"
+
+
+class ReportAb(ReportCase):
+    """--ab: A/B comparisons (scripts/ab.py's ab.csv; ab_bench.sh's trial folders with SUMMARY.txt)."""
+
+    def write_ab(self, folder, ratio, flagged):
+        os.makedirs(folder, exist_ok=True)
+        with open(os.path.join(folder, "ab.csv"), "w", encoding="utf-8") as f:
+            f.write(AB_HEADER + f"occupancy,occupancy dynamic size=8 256x256,total,{ratio},{ratio - 0.02},"
+                    f"{ratio + 0.02},3.5,{'SLOWER' if flagged else 'no difference resolved'},{int(flagged)},8,"
+                    + ";".join(f"{ratio + d:.3f}" for d in (-0.02, -0.01, 0, 0, 0.01, 0.01, 0.02, 0.02)) + "\n")
+
+    def test_each_comparison_gets_its_table_or_summary_and_a_figure(self):
+        self.write_runs()
+        ab = self.path("ab")
+        self.write_ab(os.path.join(ab, "drivers"), 1.31, True)
+        for t in (1, 2, 3):
+            self.write_ab(os.path.join(ab, "draws", f"trial-{t}"), 1.09, t != 2)
+        with open(os.path.join(ab, "draws", "SUMMARY.txt"), "w", encoding="utf-8") as f:
+            f.write("3 trial(s); 2 with a flagged case\n")
+        proc = self.report(self.path("micro.csv"), extra=("--ab", ab))
+        self.assertIn("2 A/B comparisons", proc.stdout)
+        page = read(self.path("report/index.html"))
+        self.assertIn('id="ab"', page)
+        self.assertIn("3 trial(s); 2 with a flagged case", page)  # the trials' summary, not 3 tables
+        self.assertIn("1.310", page)  # the lone comparison's table
+        for name in ("ab-draws", "ab-drivers"):
+            with open(self.path(f"report/figures/ab/{name}.png"), "rb") as f:
+                self.assertEqual(f.read(8), PNG_MAGIC)
+
+    def test_an_ab_folder_that_is_not_one_exits_2(self):
+        self.write_runs()
+        proc = self.report(self.path("micro.csv"), check=False, extra=("--ab", self.path("nowhere")))
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn("--ab", proc.stderr)
+        self.assertIn("not a folder", proc.stderr)
+
 class ReportFiles(ReportCase):
     """report.py writes over no file and removes only what a previous page of its own wrote."""
 
