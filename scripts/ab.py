@@ -184,6 +184,26 @@ def write_table(path, results):
                         ";".join(f"{x:.5g}" for x in r.ratios)])
 
 
+def figure(plt, entries, title, xlabel):
+    """Paired ratios per round pair (|), their median (o) and interval (line; red where flagged), one line per
+    entry (label, ratios, ci_low, ci_high, ratio, flagged): the figure of ab.py and of report.py --ab."""
+    fig, ax = plt.subplots(figsize=(9, 1.4 + 0.3 * len(entries)))
+    for y, (_, ratios, lo, hi, ratio, flagged) in enumerate(entries):
+        colour = "red" if flagged else "C0"
+        ax.plot(ratios, [y] * len(ratios), "|", color="grey", markersize=8)
+        if lo is not None and hi is not None:
+            ax.plot([lo, hi], [y, y], color=colour, linewidth=2)
+        ax.plot([ratio], [y], "o", color=colour)
+    ax.axvline(1.0, color="black", linewidth=0.8)
+    ax.set_yticks(range(len(entries)))
+    ax.set_yticklabels([e[0] for e in entries], fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel(xlabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, axis="x", alpha=0.3)
+    return fig
+
+
 def draw(out_dir, results, labels):
     os.environ.setdefault("MPLBACKEND", "Agg")
     import matplotlib
@@ -194,20 +214,11 @@ def draw(out_dir, results, labels):
     for r in results:
         by_exp.setdefault(r.key[0], []).append(r)
     for exp, rs in by_exp.items():
-        fig, ax = plt.subplots(figsize=(9, 1.4 + 0.3 * len(rs)))
-        for y, r in enumerate(rs):
-            ax.plot(r.ratios, [y] * len(r.ratios), "|", color="grey", markersize=8)
-            if r.ci:
-                ax.plot([r.ci[0], r.ci[1]], [y, y], color="red" if r.flagged else "C0", linewidth=2)
-            ax.plot([r.ratio], [y], "o", color="red" if r.flagged else "C0")
-        ax.axvline(1.0, color="black", linewidth=0.8)
-        ax.set_yticks(range(len(rs)))
-        ax.set_yticklabels([describe(r.key) for r in rs], fontsize=8)
-        ax.invert_yaxis()
-        ax.set_xlabel(f"{labels[1]} / {labels[0]}: paired ratio per round (|), median and interval (>1: "
-                      f"{labels[1]} slower)")
-        ax.set_title(f"{exp}: {sum(r.flagged for r in rs)} of {len(rs)} cases flagged", fontsize=10)
-        ax.grid(True, axis="x", alpha=0.3)
+        entries = [(describe(r.key), r.ratios, r.ci[0] if r.ci else None, r.ci[1] if r.ci else None, r.ratio,
+                    r.flagged) for r in rs]
+        fig = figure(plt, entries, f"{exp}: {sum(r.flagged for r in rs)} of {len(rs)} cases flagged",
+                     f"{labels[1]} / {labels[0]}: paired ratio per round (|), median and interval (>1: "
+                     f"{labels[1]} slower)")
         with plt.rc_context({"svg.hashsalt": "oitbench"}):
             for fmt in ("png", "svg"):
                 path = os.path.join(out_dir, f"ab-{exp}.{fmt}")

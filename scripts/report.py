@@ -39,6 +39,7 @@ import time
 import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ab  # noqa: E402
 import compare  # noqa: E402
 import oitcsv  # noqa: E402
 import plot  # noqa: E402
@@ -713,26 +714,6 @@ def ab_comparisons(dirs):
     return found
 
 
-def ab_figure(entries, title):
-    """Paired ratios per round (|), their median (o) and interval (line; red where flagged), one line per
-    (trial, case)."""
-    fig, ax = plot.plt.subplots(figsize=(9, 1.4 + 0.3 * len(entries)))
-    for y, (label, ratios, lo, hi, ratio, flagged) in enumerate(entries):
-        colour = "red" if flagged else "C0"
-        ax.plot(ratios, [y] * len(ratios), "|", color="grey", markersize=8)
-        if lo is not None and hi is not None:
-            ax.plot([lo, hi], [y, y], color=colour, linewidth=2)
-        ax.plot([ratio], [y], "o", color=colour)
-    ax.axvline(1.0, color="black", linewidth=0.8)
-    ax.set_yticks(range(len(entries)))
-    ax.set_yticklabels([e[0] for e in entries], fontsize=8)
-    ax.invert_yaxis()
-    ax.set_xlabel("B / A: paired ratio per round pair (|), median (o) and interval (line; red: flagged)")
-    ax.set_title(title, fontsize=10)
-    ax.grid(True, axis="x", alpha=0.3)
-    return fig
-
-
 def ab_section(page, dirs, out_dir, failures):
     """The A/B comparisons (scripts/ab.py, scripts/ab_bench.sh) under `dirs`: each one's summary or table
     and a figure of its paired ratios. Returns how many comparisons were shown."""
@@ -774,7 +755,9 @@ def ab_section(page, dirs, out_dir, failures):
         print(f"report.py: figure: A/B {label}", flush=True)
         try:
             flagged = sum(e[5] for e in entries)
-            plot.save(ab_figure(entries, f"{label}: {flagged} of {len(entries)} flagged"), stem)
+            plot.save(ab.figure(plot.plt, entries, f"{label}: {flagged} of {len(entries)} flagged",
+                                "B / A: paired ratio per round pair (|), median (o) and interval (line; red: "
+                                "flagged)"), stem)
             page.add(f'<figure><a href="{url(rel + ".svg")}">'
                      f"{img_tag(rel + '.png', stem + '.png', 'A/B ' + label, 'summary-figure')}</a>"
                      f'<figcaption>{esc(label)} &middot; <a href="{url(rel + ".svg")}">SVG</a></figcaption></figure>')
