@@ -7,6 +7,9 @@
 #   scripts/reference_runs.sh                      build, every preset, info, images, report, findings
 #   scripts/reference_runs.sh --only P1,P2         build, those presets, info, report, findings ("images" renders them)
 #   scripts/reference_runs.sh --report-only        the report and the findings from the CSVs already there
+#   scripts/reference_runs.sh --target-ci 3        repeat each case until its median's 95% interval is
+#                                                  within +-3% (default here 5: the reference runs' bound;
+#                                                  oitbench's own default is 3; a case that misses it says so)
 #   scripts/reference_runs.sh --driver zink --only default,knowles2014-quick,bruell2018-approx
 #                                                  the same on another driver, into results/<its driver>/
 #                                                  (zink over lavapipe: results/zink-lavapipe/)
@@ -39,12 +42,15 @@ usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' 
 mapfile -t ALL_PRESETS < <(for f in presets/*.json; do basename "$f" .json; done)
 only=""
 report_only=0
+target_ci=5
 while [ $# -gt 0 ]; do
   case "$1" in
     --only) [ $# -ge 2 ] || { echo "reference_runs.sh: --only needs PRESET[,PRESET...]" >&2; exit 2; }
             only=$2; shift 2 ;;
     --only=*) only=${1#--only=}; shift ;;
     --report-only) report_only=1; shift ;;
+    --target-ci) [ $# -ge 2 ] || { echo "reference_runs.sh: --target-ci needs a percentage" >&2; exit 2; }
+                 target_ci=$2; shift 2 ;;
     --driver) [ $# -ge 2 ] || { echo "reference_runs.sh: --driver needs a name" >&2; exit 2; }
               driver=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
@@ -93,8 +99,11 @@ trap 'echo; say "interrupted: stopping (the finished rows are in the CSVs)"; exi
 failed=()
 
 write_report() {
-  say "report: $PYTHON scripts/report.py $OUT -o $OUT/report"
-  "$PYTHON" scripts/report.py "$OUT" -o "$OUT/report"
+  # The driver's A/B comparisons (scripts/ab_bench.sh writes results/ab-<driver>/) get a section of the page.
+  local ab=()
+  [ -d "results/ab-${OUT#results/}" ] && ab=(--ab "results/ab-${OUT#results/}")
+  say "report: $PYTHON scripts/report.py $OUT ${ab[*]} -o $OUT/report"
+  "$PYTHON" scripts/report.py "$OUT" "${ab[@]}" -o "$OUT/report"
   local rc=$?
   [ $rc -eq 0 ] || failed+=("report (exit $rc)")
   say "findings: $PYTHON scripts/findings.py $OUT -o $OUT/FINDINGS.md"
@@ -128,7 +137,7 @@ for name in "${presets[@]}"; do
   rm -f "$csv" "$raw"  # --out appends to a file with the same header: start from nothing
   say "preset $i/${#presets[@]}: $name"
   t0=$SECONDS
-  "$OITBENCH" run --preset "$name" --driver "$driver" --out "$csv" --raw "$raw"
+  "$OITBENCH" run --preset "$name" --driver "$driver" --target-ci "$target_ci" --out "$csv" --raw "$raw"
   rc=$?
   [ $rc -eq 130 ] && { say "interrupted during $name"; exit 130; }
   say "preset $name: exit $rc after $(((SECONDS - t0) / 60))m$(((SECONDS - t0) % 60))s"
