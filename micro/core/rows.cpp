@@ -112,7 +112,12 @@ std::vector<Row> summary_rows(const RowSettings& s, const CaseRecord& c) {
       if (auto ci = median_interval(primary); ci.ok) {
         row["ci_lo_ms"] = fmt_number(ci.lo);
         row["ci_hi_ms"] = fmt_number(ci.hi);
-        row["ci_pct"] = fmt_number(relative_half_width(ci, st.median) * 100, 2);
+        const double rel = relative_half_width(ci, st.median);
+        row["ci_pct"] = fmt_number(rel * 100, 2);
+        // The stopping rule watches the total; a pass whose own interval missed the target says so.
+        if (pass != "total" && c.stop != "fixed" && s.target_ci > 0 && rel > s.target_ci)
+          reason += (reason.empty() ? "" : "; ") + std::string("this pass: ci +-") + fmt_number(rel * 100, 2) +
+                    "% > target +-" + fmt_number(s.target_ci * 100) + "% (the stopping rule watches the total)";
       }
       if (c.baseline_record)
         if (auto sp = paired_speedup(*c.baseline_record, c, pass, s.gpu_primary)) {

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "core/rows.hpp"
 #include "core/stats.hpp"
 
 namespace oitbench {
@@ -117,6 +118,36 @@ TEST(Sampling, AFixedCountIsKeptAndFlaggedWhenItGivesNoInterval) {
   s = drive(p, {0.5}, why);
   EXPECT_EQ(s[0].size(), 7u);
   EXPECT_EQ(ci_note(p, s[0], why), "");  // a fixed count is not held to the target
+}
+
+}  // namespace oitbench
+
+namespace oitbench {
+
+// The stopping rule watches the total; a pass row whose own interval missed the target says so in its
+// reason (every timed row within the target or flagged), unless the count was fixed.
+TEST(Sampling, APassWhoseIntervalMissedTheTargetSaysSo) {
+  RowSettings s;
+  s.experiment = "oit";
+  s.target_ci = 0.05;
+  CaseRecord c;
+  c.pass_names = {"capture", "resolve"};
+  c.stop = "target";
+  c.cpu["total"] = {100, 101, 99, 100, 100.5, 99.5, 100, 100.2};
+  c.cpu["capture"] = c.cpu["total"];
+  c.cpu["resolve"] = {50, 60, 40, 55, 45, 70, 30, 52};
+  for (const auto& [pass, v] : c.cpu) c.gpu[pass] = std::vector<double>(v.size(), -1);
+  auto reason_of = [&](const std::string& pass) {
+    for (auto& row : summary_rows(s, c))
+      if (row.at("pass") == pass) return row.at("reason");
+    return std::string("(no row)");
+  };
+  EXPECT_NE(reason_of("resolve").find("this pass: ci +-"), std::string::npos) << reason_of("resolve");
+  EXPECT_NE(reason_of("resolve").find("> target +-5%"), std::string::npos) << reason_of("resolve");
+  EXPECT_EQ(reason_of("capture"), "");
+  EXPECT_EQ(reason_of("total"), "");
+  c.stop = "fixed";  // --reps N: the count was the user's, and the total says nothing either
+  EXPECT_EQ(reason_of("resolve"), "");
 }
 
 }  // namespace oitbench
