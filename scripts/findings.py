@@ -844,11 +844,17 @@ def section_targets(f):
 
 
 def speedups(f, name, pass_):
-    """{(scene, view): {technique: BASE-IS time / technique time}} of a preset's oit rows."""
-    out = {}
+    """{(scene, view): {technique: BASE-IS time / technique time}} of a preset's oit rows: the row's paired
+    `speedup` where its baseline is BASE-IS (schema 4: the two ran side by side in one group), else the
+    ratio of the two rows' medians."""
+    out, paired = {}, {}
     for r in f.rows(name, "oit", pass_=pass_, capture="PPLL"):
-        out.setdefault((r["scene"], r["view"]), {})[r["technique"]] = ms(r)
-    return {k: {t: ratio(v["BASE-IS"], x) for t, x in v.items()} for k, v in out.items() if "BASE-IS" in v}
+        view = (r["scene"], r["view"])
+        out.setdefault(view, {})[r["technique"]] = ms(r)
+        if r.get("speedup") and r.get("baseline") == "technique=BASE-IS":
+            paired.setdefault(view, {})[r["technique"]] = num(r, "speedup")
+    return {k: {t: paired.get(k, {}).get(t) or ratio(v["BASE-IS"], x) for t, x in v.items()}
+            for k, v in out.items() if "BASE-IS" in v}
 
 
 def paper_speedup(pairs, technique, scene, view, metric):
@@ -872,8 +878,9 @@ def section_knowles2014(f):
     views = sorted(rsp, key=lambda k: (scene_key(k[0]), view_key(k[1])))
     techs = [t for t in EXACT_SHADER + ["CPU-NATIVE"] if t != "BASE-IS" and any(t in rsp[v] for v in views)]
     r0 = f.rows(name, "oit")[0]
-    lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}, register blocks of {r0.get('block', '?')}): "
-              "speedup over BASE-IS (time of BASE-IS / time) per view, the paper's (GTX Titan, 1920x1080) in "
+    blocks = ", ".join(sorted({r["block"] for r in f.rows(name, "oit", pass_=None, valid=False) if r.get("block")}, key=int)) or "?"
+    lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}, register blocks of {blocks}): "
+              "speedup over BASE-IS (time of BASE-IS / time; paired per repetition where the rows carry it) per view, the paper's (GTX Titan, 1920x1080) in "
               "brackets; the engine grid stands in for the power plant, the house for the atrium, CS-* for the "
               "paper's CUDA-* rows.", ""]
     for label, sp, metric in (("Resolve", rsp, "resolve_speedup_vs_BASE-IS"),
