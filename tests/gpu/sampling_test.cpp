@@ -95,8 +95,9 @@ TEST(Sampling, TheStoppingRuleStopsAtItsTargetOrSaysWhyNot) {
   EXPECT_EQ(tight[0]["reps"], "8");
   EXPECT_TRUE(contains(tight[0]["reason"], "> target +-0.01% (stopped by --max-reps 8)")) << tight[0]["reason"];
 
-  auto timed = run_rows("timed", {"occupancy", "--set", "variant=dynamic", "--set", "size=1", "--set", "draws=4",
-                                  "--resolution", "32x32", "--target-ci", "0.01", "--max-case-s", "0.05", "--max-reps", "100000"});
+  auto timed =
+      run_rows("timed", {"occupancy", "--set", "variant=dynamic", "--set", "size=1", "--set", "draws=4", "--resolution",
+                         "32x32", "--target-ci", "0.01", "--max-case-s", "0.05", "--max-reps", "100000"});
   ASSERT_EQ(timed.size(), 1u);
   EXPECT_EQ(timed[0]["stop"], "max-case-s") << timed[0]["samples"] << " samples of " << timed[0]["sample_runs"];
   EXPECT_LT(num(timed[0], "samples"), 100000);
