@@ -145,7 +145,8 @@ for name in "${presets[@]}"; do
 done
 
 say "info: $OITBENCH info > $OUT/info.txt"
-"$OITBENCH" info --driver "$driver" > "$OUT/info.txt" || failed+=("info")
+# The data folders it names relative to the repository (no machine's paths in a committed file).
+"$OITBENCH" info --driver "$driver" | sed "s|$PWD/||g" > "$OUT/info.txt" || failed+=("info")
 
 if [ $render_images -eq 1 ]; then
   rm -rf "$OUT/images"

@@ -622,6 +622,26 @@ def figures_of(page, inp, out_dir, failures):
     return count
 
 
+def figure_block(page, out_dir, rel, make, alt, kind, caption, failure, failures):
+    """Draws `make()` into out_dir/rel.png and .svg and adds it to the page, linked to the SVG, with
+    `caption` (HTML). A figure that fails costs nothing else: `failure` (a name, and the HTML of what could
+    not be drawn) goes to `failures` and into a note on the page. Returns whether it was drawn."""
+    name, what_html = failure
+    stem = os.path.join(out_dir, rel)
+    os.makedirs(os.path.dirname(stem), exist_ok=True)
+    print(f"report.py: figure: {name}", flush=True)
+    try:
+        plot.save(make(), stem)
+    except Exception as e:  # a figure bug on odd data must not cost the rest of the page
+        plot.plt.close("all")
+        failures.append(f"{name}: {type(e).__name__}: {e}")
+        page.add(f'<p class="note">{what_html} could not be drawn: {esc(type(e).__name__)}: {esc(e)}</p>')
+        return False
+    page.add(f'<figure><a href="{url(rel + ".svg")}">{img_tag(rel + ".png", stem + ".png", alt, kind)}</a>'
+             f'<figcaption>{caption} &middot; <a href="{url(rel + ".svg")}">SVG</a></figcaption></figure>')
+    return True
+
+
 def paper_figure(page, table, inp, paper_rows, out_dir, failures):
     """Beside a paper table: its speedups against ours from the run opened by default (plot.py's
     paper_figure), in out_dir/figures/tables/NAME.png and .svg; nothing where no row has both."""
@@ -629,24 +649,13 @@ def paper_figure(page, table, inp, paper_rows, out_dir, failures):
     pairs = tables.figure_pairs(table, tables.build_rows(table, paper_rows, ours))
     if not pairs:
         return
-    rel = os.path.join("figures", "tables", slug(table.name))
-    stem = os.path.join(out_dir, rel)
-    os.makedirs(os.path.dirname(stem), exist_ok=True)
-    print(f"report.py: figure: {table.name} against {inp.rel}", flush=True)
-    try:
-        paper_hw, ours_hw = tables.figure_hardware(table, ours, paper_rows)
-        plot.save(plot.paper_figure(f"{table.title} [ours: {inp.run.label}]", pairs, paper_hw, ours_hw), stem)
-    except Exception as e:  # a figure bug on odd data must not cost the rest of the page
-        plot.plt.close("all")
-        failures.append(f"{table.name}: {type(e).__name__}: {e}")
-        page.add(f'<p class="note">The figure of <code>{esc(table.name)}</code> could not be drawn: '
-                 f"{esc(type(e).__name__)}: {esc(e)}</p>")
-        return
-    page.add(f'<figure><a href="{url(rel + ".svg")}">'
-             f"{img_tag(rel + '.png', stem + '.png', f'{table.name}: the paper against ours', 'paper-figure')}</a>"
-             f"<figcaption>{esc(table.name)}: the paper's speedup (hatched) beside ours (solid) over the same "
-             f"baseline, {len(pairs)} pair(s) from <code>{esc(inp.rel)}</code> &middot; "
-             f'<a href="{url(rel + ".svg")}">SVG</a></figcaption></figure>')
+    figure_block(page, out_dir, os.path.join("figures", "tables", slug(table.name)),
+                 lambda: plot.paper_figure(f"{table.title} [ours: {inp.run.label}]", pairs,
+                                           *tables.figure_hardware(table, ours, paper_rows)),
+                 f"{table.name}: the paper against ours", "paper-figure",
+                 f"{esc(table.name)}: the paper's speedup (hatched) beside ours (solid) over the same baseline, "
+                 f"{len(pairs)} pair(s) from <code>{esc(inp.rel)}</code>",
+                 (f"{table.name} against {inp.rel}", f"The figure of <code>{esc(table.name)}</code>"), failures)
 
 
 def fastest_section(page, inputs, out_dir, failures):
@@ -672,21 +681,10 @@ def fastest_section(page, inputs, out_dir, failures):
              "view, by the median of its resolve pass and of its total. Approximate techniques (an error above "
              "the floor, or an approximate family) are left out; see each run's figure for error against time."
              "</p>")
-    rel = os.path.join("figures", "fastest")
-    stem = os.path.join(out_dir, rel)
-    os.makedirs(os.path.dirname(stem), exist_ok=True)
-    print("report.py: figure: fastest technique per view", flush=True)
-    try:
-        plot.save(plot.fastest_figure(entries), stem)
-        page.add(f'<figure><a href="{url(rel + ".svg")}">'
-                 f"{img_tag(rel + '.png', stem + '.png', 'fastest exact technique per view', 'summary-figure')}</a>"
-                 f'<figcaption>time / the view\'s fastest exact technique, per pass and driver &middot; '
-                 f'<a href="{url(rel + ".svg")}">SVG</a></figcaption></figure>')
-    except Exception as e:  # a figure bug on odd data must not cost the rest of the page
-        plot.plt.close("all")
-        failures.append(f"fastest: {type(e).__name__}: {e}")
-        page.add(f'<p class="note">The fastest-technique figure could not be drawn: {esc(type(e).__name__)}: '
-                 f"{esc(e)}</p>")
+    figure_block(page, out_dir, os.path.join("figures", "fastest"), lambda: plot.fastest_figure(entries),
+                 "fastest exact technique per view", "summary-figure",
+                 "time / the view's fastest exact technique, per pass and driver",
+                 ("fastest technique per view", "The fastest-technique figure"), failures)
     page.add(html_table(plot.FASTEST_HEADER, [[esc(c) for c in line] for line in plot.fastest_lines(entries)],
                         numeric=[False, False, False, False, True, False, True]))
     return 1
@@ -749,21 +747,13 @@ def ab_section(page, dirs, out_dir, failures):
         if rows_html:
             page.add(html_table(["case", "pass", "B / A", "interval", "noise %", "verdict", "round pairs"],
                                 rows_html, numeric=[False, False, True, False, True, False, True]))
-        rel = os.path.join("figures", "ab", slug(label))
-        stem = os.path.join(out_dir, rel)
-        os.makedirs(os.path.dirname(stem), exist_ok=True)
-        print(f"report.py: figure: A/B {label}", flush=True)
-        try:
-            flagged = sum(e[5] for e in entries)
-            plot.save(ab.figure(plot.plt, entries, f"{label}: {flagged} of {len(entries)} flagged",
-                                "B / A: paired ratio per round pair (|), median (o) and interval (line; red: "
-                                "flagged)"), stem)
-            page.add(f'<figure><a href="{url(rel + ".svg")}">'
-                     f"{img_tag(rel + '.png', stem + '.png', 'A/B ' + label, 'summary-figure')}</a>"
-                     f'<figcaption>{esc(label)} &middot; <a href="{url(rel + ".svg")}">SVG</a></figcaption></figure>')
-        except Exception as e:  # a figure bug on odd data must not cost the rest of the page
-            plot.plt.close("all")
-            failures.append(f"A/B {label}: {type(e).__name__}: {e}")
+        flagged = sum(e[5] for e in entries)
+        figure_block(page, out_dir, os.path.join("figures", "ab", slug(label)),
+                     lambda: ab.figure(plot.plt, entries, f"{label}: {flagged} of {len(entries)} flagged",
+                                       "B / A: paired ratio per round pair (|), median (o) and interval (line; "
+                                       "red: flagged)"),
+                     "A/B " + label, "summary-figure", esc(label),
+                     (f"A/B {label}", f"The A/B figure of <code>{esc(label)}</code>"), failures)
     return len(comparisons)
 
 
