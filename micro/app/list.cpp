@@ -62,8 +62,15 @@ void list_presets_command(const Registry& registry, const std::string& preset_di
       auto mark = [&](Here which) { return here == which ? "   <- applies here" : ""; };
       std::printf("        software renderer: %s%s\n", size_text(resolve_run_size(r, *e, defaults, false)).c_str(),
                   mark(Here::Software));
-      std::printf("        hardware:          %s%s%s\n", size_text(resolve_run_size(r, *e, defaults, true)).c_str(),
-                  r.hardware ? "" : " (no \"hardware\" entry: the same)", mark(Here::Hardware));
+      std::string hardware_set;
+      if (r.hardware)
+        for (const auto& [k, v] : r.hardware->set) {
+          std::string values;
+          for (const auto& x : v) values += (values.empty() ? "" : ",") + x;
+          hardware_set += " " + k + "=" + values;
+        }
+      std::printf("        hardware:          %s%s%s%s\n", size_text(resolve_run_size(r, *e, defaults, true)).c_str(),
+                  hardware_set.c_str(), r.hardware ? "" : " (no \"hardware\" entry: the same)", mark(Here::Hardware));
     }
   }
 }

@@ -17,7 +17,10 @@ int run_command(Registry& registry, RunCommand& c) {
     if (ropt.preset_name.empty()) ropt.preset_name = p.name;
     requests = p.runs;
     for (auto& r : requests)
-      for (const auto& [k, v] : overrides) r.overrides[k] = v;
+      for (const auto& [k, v] : overrides) {
+        r.overrides[k] = v;
+        if (r.hardware) r.hardware->set.erase(k);  // the command line decides on every driver
+      }
   } else {
     if (c.experiments.empty())
       throw UsageError("run: name an experiment, 'all' or --preset NAME; experiments: " + registry.names());

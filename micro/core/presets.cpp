@@ -63,12 +63,36 @@ int count_value(const nlohmann::json& v, const PresetText& at, const std::vector
   return v.get<int>();
 }
 
-// "hardware": {"resolution": "1920x1080", "reps": 10, "warmup": 2}: the sizes for hardware drivers.
+// "set": {"NAME": [V1, V2, ...] or V, ...}: parameter lists.
+std::map<std::string, std::vector<std::string>> set_lists(const nlohmann::json& v, const PresetText& at,
+                                                          std::vector<std::string> keys) {
+  if (!v.is_object()) throw at.error(keys, "expected an object of parameter lists");
+  std::map<std::string, std::vector<std::string>> lists;
+  for (const auto& [pk, pv] : v.items()) {
+    auto& list = lists[pk];
+    keys.push_back(pk);
+    if (pv.is_array()) {
+      for (size_t n = 0; n < pv.size(); ++n) {
+        keys.push_back(std::to_string(n));
+        list.push_back(to_value(pv[n], at, keys));
+        keys.pop_back();
+      }
+    } else {
+      list.push_back(to_value(pv, at, keys));
+    }
+    if (list.empty()) throw at.error(keys, "empty value list");
+    keys.pop_back();
+  }
+  return lists;
+}
+
+// "hardware": {"resolution": "1920x1080", "reps": 10, "warmup": 2, "set": {...}}: what changes on hardware
+// drivers.
 HardwareSizes hardware_sizes(const nlohmann::json& v, const PresetText& at, std::vector<std::string> keys) {
   if (!v.is_object() || v.empty())
     throw at.error(keys,
-                   "expected an object with one or more of resolution, reps, warmup (the sizes on hardware "
-                   "drivers), got " +
+                   "expected an object with one or more of resolution, reps, warmup, set (what changes on "
+                   "hardware drivers), got " +
                        (v.is_object() ? std::string("{}") : std::string(v.type_name())));
   HardwareSizes h;
   for (const auto& [k, x] : v.items()) {
@@ -79,8 +103,10 @@ HardwareSizes hardware_sizes(const nlohmann::json& v, const PresetText& at, std:
       h.reps = count_value(x, at, keys, 1);
     else if (k == "warmup")
       h.warmup = count_value(x, at, keys, 0);
+    else if (k == "set")
+      h.set = set_lists(x, at, keys);
     else
-      throw at.error(keys, "unknown key \"" + k + "\"; expected resolution, reps, warmup");
+      throw at.error(keys, "unknown key \"" + k + "\"; expected resolution, reps, warmup, set");
     keys.pop_back();
   }
   return h;
@@ -140,17 +166,7 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
     for (const auto& [k, v] : r.items()) {
       if (k == "experiment") continue;
       if (k == "set") {
-        if (!v.is_object()) throw at.error(in({"set"}), "expected an object of parameter lists");
-        for (const auto& [pk, pv] : v.items()) {
-          auto& list = req.overrides[pk];
-          if (pv.is_array()) {
-            for (size_t n = 0; n < pv.size(); ++n)
-              list.push_back(to_value(pv[n], at, in({"set", pk, std::to_string(n)})));
-          } else {
-            list.push_back(to_value(pv, at, in({"set", pk})));
-          }
-          if (list.empty()) throw at.error(in({"set", pk}), "empty value list");
-        }
+        req.overrides = set_lists(v, at, in({"set"}));
       } else if (k == "resolution") {
         req.resolution = resolution_value(v, at, in({k}));
       } else if (k == "reps" || k == "warmup") {

@@ -13,6 +13,7 @@
 #include "backends/backend.hpp"
 #include "core/params.hpp"
 #include "core/schema.hpp"
+#include "core/shared_cache.hpp"
 #include "core/timer.hpp"
 #include "gl/shader.hpp"
 
@@ -39,14 +40,15 @@ struct Validation {
 class CaseContext {
  public:
   CaseContext(const ShaderLibrary& shaders, const GlInfo& gl, Resolution res, std::string fault, unsigned seed,
-              std::string image_stem = "", bool gpu_clock = false)
+              std::string image_stem = "", bool gpu_clock = false, SharedCache* shared = nullptr)
       : shaders_(shaders),
         gl_(gl),
         res_(res),
         fault_(std::move(fault)),
         seed_(seed),
         image_stem_(std::move(image_stem)),
-        gpu_clock_(gpu_clock) {}
+        gpu_clock_(gpu_clock),
+        shared_(shared) {}
   const ShaderLibrary& shaders() const { return shaders_; }
   const GlInfo& gl() const { return gl_; }
   int width() const { return res_.width; }
@@ -59,6 +61,8 @@ class CaseContext {
   // The run's primary clock is GL_TIME_ELAPSED (hardware drivers): a case that times something
   // itself (BMA-AUTO's calibration) uses the same clock.
   bool gpu_clock() const { return gpu_clock_; }
+  // What the run's cases share (a scene's meshes); null where nothing is shared (each case builds its own).
+  SharedCache* shared() const { return shared_; }
   // Compiles with the experiment's defines plus the fault define (OITBENCH_FAULT_WRONG_RESULT, ...).
   gl::Program build(const std::vector<ShaderStage>& stages, Defines defines) const;
 
@@ -70,6 +74,7 @@ class CaseContext {
   unsigned seed_;
   std::string image_stem_;
   bool gpu_clock_;
+  SharedCache* shared_;
 };
 
 class CaseInstance {
@@ -106,8 +111,12 @@ class Experiment {
   virtual Resolution quick_resolution() const { return {256, 256}; }
   // Variants that can hang a real GPU (spinlocks): each case runs in a child process under a watchdog.
   virtual bool hang_prone() const { return false; }
-  // Cases held in memory at once for interleaving; experiments with large buffers lower it.
-  virtual int max_interleave() const { return 8; }
+  // Cases held in memory at once for interleaving at this render target size; experiments with large
+  // buffers lower it.
+  virtual int max_interleave(Resolution res) const {
+    (void)res;
+    return 8;
+  }
   // Empty when the case can run on this driver; else the reason it is unsupported.
   virtual std::string unsupported_reason(const GlInfo&, const ParamSet&) const { return ""; }
   virtual std::unique_ptr<CaseInstance> prepare(const ParamSet& params, CaseContext& ctx) = 0;

@@ -119,7 +119,7 @@ class Runner {
           run_isolated(p, c);
         }
       } else {
-        size_t chunk = opt_.interleave ? static_cast<size_t>(std::max(1, p.exp->max_interleave())) : 1;
+        size_t chunk = opt_.interleave ? static_cast<size_t>(std::max(1, p.exp->max_interleave(p.res))) : 1;
         for (const auto& g : plan_groups(p.cases, p.baseline, chunk)) {
           if (signals_.stopped()) break;
           run_group(p, g);
@@ -155,7 +155,8 @@ class Runner {
       policy.adaptive = !size.fixed_reps;
       policy.reps = size.reps;
       plan.push_back({e, size.resolution, size.reps, size.warmup,
-                      expand_grid(registry_.params_of(*e), r.overrides, quick, opt_.max_cases), policy, r.baseline});
+                      expand_grid(registry_.params_of(*e), request_overrides(r, hardware), quick, opt_.max_cases),
+                      policy, r.baseline});
     }
     return plan;
   }
@@ -214,7 +215,7 @@ class Runner {
     }
     try {
       CaseContext cctx(*shaders_, gl_, res, rec.params.get("fault"), static_cast<unsigned>(rec.params.get_int("seed")),
-                       opt_.image_stem, use_gpu_timer_);
+                       opt_.image_stem, use_gpu_timer_, shared_.get());
       glFinish();
       auto t0 = Clock::now();
       auto before = shaders_->cache_counts();
@@ -552,6 +553,8 @@ class Runner {
   GlInfo gl_;
   GpuMonitor gpu_;  // NVML where the GL driver is NVIDIA's; inactive elsewhere
   std::unique_ptr<ShaderLibrary> shaders_;
+  // Declared after the context: destroyed first, while its GL objects can still be deleted.
+  std::unique_ptr<SharedCache> shared_ = std::make_unique<SharedCache>();
   bool use_gpu_timer_ = false, sync_passes_ = true;
   bool gl_info_known_ = false;
   std::unique_ptr<CsvWriter> writer_, raw_writer_;
@@ -570,8 +573,8 @@ RunSize resolve_run_size(const RunRequest& r, const Experiment& e, const RunOpti
   const bool quick = opt.quick || r.quick;
   const HardwareSizes hw = hardware_driver && r.hardware ? *r.hardware : HardwareSizes{};
   RunSize s;
-  s.hardware_sizes =
-      (!opt.resolution && hw.resolution) || (!opt.reps_given && hw.reps) || (!opt.warmup_given && hw.warmup);
+  s.hardware_sizes = (!opt.resolution && hw.resolution) || (!opt.reps_given && hw.reps) ||
+                     (!opt.warmup_given && hw.warmup) || !hw.set.empty();
   s.resolution = opt.resolution  ? *opt.resolution
                  : hw.resolution ? *hw.resolution
                  : r.resolution  ? *r.resolution
@@ -592,31 +595,49 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
   if (!e)
     throw UsageError("unknown experiment '" + r.experiment + "'; valid experiments: " + registry.names() + ", all");
   auto specs = registry.params_of(*e);
-  for (const auto& [name, values] : r.overrides) {
-    auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });
-    if (it == specs.end()) {
-      std::string valid;
-      for (const auto& s : specs) valid += (valid.empty() ? "" : ", ") + s.name;
-      throw UsageError("experiment '" + e->name() + "' has no parameter '" + name + "'; valid parameters: " + valid);
-    }
-    for (const auto& v : values) it->check(v, e->name());
-  }
   for (const auto& [name, value] : r.baseline) {
     auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });
     if (it == specs.end())
       throw UsageError("experiment '" + e->name() + "': the baseline names no parameter '" + name + "'");
     it->check(value, e->name());
   }
-  try {
-    // a scoped --set that no case uses, a grid too large, a case the experiment's data rules out
-    auto cases = expand_grid(specs, r.overrides, quick || r.quick, max_cases);
-    e->check_cases(cases);
-    return cases.size();
-  } catch (const UsageError& err) {
-    throw UsageError("experiment '" + e->name() + "': " + err.what());
+  // The grid on a software renderer and, where the entry has a hardware "set", the one on hardware: both
+  // must be valid wherever the check runs.
+  size_t most = 0;
+  for (bool hardware : {false, true}) {
+    if (hardware && (!r.hardware || r.hardware->set.empty())) break;
+    const auto overrides = request_overrides(r, hardware);
+    for (const auto& [name, values] : overrides) {
+      auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });
+      if (it == specs.end()) {
+        std::string valid;
+        for (const auto& s : specs) valid += (valid.empty() ? "" : ", ") + s.name;
+        throw UsageError("experiment '" + e->name() + "' has no parameter '" + name + "'" +
+                         (hardware && r.hardware->set.count(name) ? " (in its hardware set)" : "") +
+                         "; valid parameters: " + valid);
+      }
+      for (const auto& v : values) it->check(v, e->name());
+    }
+    try {
+      // a scoped --set that no case uses, a grid too large, a case the experiment's data rules out
+      auto cases = expand_grid(specs, overrides, quick || r.quick, max_cases);
+      e->check_cases(cases);
+      most = std::max(most, cases.size());
+    } catch (const UsageError& err) {
+      throw UsageError("experiment '" + e->name() + "'" + (hardware ? " on a hardware driver" : "") + ": " +
+                       err.what());
+    }
   }
+  return most;
 }
 }  // namespace
+
+std::map<std::string, std::vector<std::string>> request_overrides(const RunRequest& r, bool hardware_driver) {
+  auto o = r.overrides;
+  if (hardware_driver && r.hardware)
+    for (const auto& [k, v] : r.hardware->set) o[k] = v;
+  return o;
+}
 
 void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick, size_t max_cases) {
   if (requests.empty()) throw UsageError("nothing to run; experiments: " + registry.names());

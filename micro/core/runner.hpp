@@ -19,6 +19,9 @@ namespace oitbench {
 struct HardwareSizes {
   std::optional<Resolution> resolution;
   std::optional<int> reps, warmup;
+  // Parameter lists that replace the entry's own on hardware drivers (a grid a software renderer cannot
+  // afford, e.g. 64 peeled layers of 12.76 M triangles); a --set of the same name replaces both.
+  std::map<std::string, std::vector<std::string>> set{};
 };
 
 // One experiment to run, from the command line or from one entry of a preset.
@@ -34,6 +37,9 @@ struct RunRequest {
   // interleaved group of the cases it is the baseline of (core/groups.hpp).
   std::map<std::string, std::string> baseline{};
 };
+
+// The request's parameter lists on a hardware driver (its hardware "set" over its own) or elsewhere.
+std::map<std::string, std::vector<std::string>> request_overrides(const RunRequest& r, bool hardware_driver);
 
 struct RunOptions {
   ContextOptions context;

@@ -136,7 +136,10 @@ const std::vector<ColumnSpec>& summary_base_columns() {
        "renderers, --sync-passes); 0: passes ran back to back, timed by their queries, "
        "and a pass's cpu_median_ms is its submission",
        "timing"},
-      {"compile_ms", T::Number, "ms", "preparing the case: compile, link, allocate, upload", "timing"},
+      {"compile_ms", T::Number, "ms",
+       "preparing the case: compile, link, allocate, upload (a scene's meshes: once per run, by the first case that "
+       "draws them)",
+       "timing"},
       {"program_cache", T::Text, "", "hit, miss, partial or off: whether compile_ms paid for compiling", "timing"},
       {"warmup_ms", T::Number, "ms",
        "the first (untimed) repetition, JIT included; where the work scales (sample_units), one unit of it", "timing"},

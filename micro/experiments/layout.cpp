@@ -154,7 +154,7 @@ class LayoutExperiment final : public Experiment {
   Resolution default_resolution() const override { return {800, 800}; }  // the thesis's
   Resolution quick_resolution() const override { return {128, 128}; }
   // All 15 layouts of one grid point interleaved (paired comparison): up to 82 MB each at 800x800, n=16.
-  int max_interleave() const override { return 15; }
+  int max_interleave(Resolution) const override { return 15; }
   std::string unsupported_reason(const GlInfo&, const ParamSet& p) const override {
     auto l = StorageLayout::parse(p.get("layout"));
     if (l.kind == StorageLayout::Kind::Interleaved && p.get_int("nodes") % l.align != 0)

@@ -321,7 +321,7 @@ class LinesExperiment final : public Experiment {
   }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {128, 128}; }
-  int max_interleave() const override { return 2; }
+  int max_interleave(Resolution) const override { return 2; }
   std::string unsupported_reason(const GlInfo& gl, const ParamSet&) const override {
     return gl.has_compute() ? "" : "needs compute shaders (GL 4.3)";
   }

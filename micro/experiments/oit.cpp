@@ -271,7 +271,12 @@ class OitExperiment final : public Experiment {
   }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {128, 128}; }
-  int max_interleave() const override { return 2; }  // each case holds its node pool
+  // Each case holds its node pool (pixels x depth): up to 8 cases while they hold at most 2^20 pixels
+  // together (8 at 128x128 and 256x256, 4 at 512x512), never fewer than 2 (a case and its baseline).
+  int max_interleave(Resolution res) const override {
+    const long long pixels = std::max(1LL, static_cast<long long>(res.width) * res.height);
+    return static_cast<int>(std::clamp((1LL << 20) / pixels, 2LL, 8LL));
+  }
   std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override { return make_oit_case(p, ctx); }
 };
 

@@ -55,9 +55,9 @@ struct CapturedView {
   // techniques test the opaque depth in their shaders (opaque_hides, depth_sampler_defines()).
   std::unique_ptr<ScenePasses> fx;
   const SceneDesc* scene = nullptr;
-  GpuMesh* mesh = nullptr;  // fx's transparent primitives
-  Backdrop backdrop;        // the opaque colour and depth, read back for the references
-  size_t hidden = 0;        // transparent fragments the CPU hid behind the opaque depth
+  const GpuMesh* mesh = nullptr;  // fx's transparent primitives
+  Backdrop backdrop;              // the opaque colour and depth, read back for the references
+  size_t hidden = 0;              // transparent fragments the CPU hid behind the opaque depth
   glm::mat4 view_proj{1.0f};
   glm::vec2 near_far{0.1f, 10.f};
   glm::vec2 depth_range{0.1f, 10.f};  // nearest and farthest vertex along the view direction

@@ -63,6 +63,39 @@ std::vector<std::string> effect_pass_names(const std::vector<std::string>& effec
   return passes;
 }
 
+namespace {
+
+// The geometry's cache key: everything build_mesh() reads (the scene file, its view, the detail, whether
+// opaque primitives are split off) and whether the transparent primitives are kept.
+std::string geometry_key(const SceneDesc& scene, const std::string& view, Detail detail, bool opaque,
+                         bool transparency) {
+  return "scene-geometry\n" + scene.path + "\n" + scene.name + "\n" + view + "\n" +
+         (detail == Detail::Small ? "small" : "full") + (opaque ? "\nopaque" : "") +
+         (transparency ? "" : "\nno transparency");
+}
+
+}  // namespace
+
+std::shared_ptr<const SceneGeometry> scene_geometry(CaseContext& ctx, const SceneDesc& scene, const View& view,
+                                                    Detail detail, bool opaque, bool transparency) {
+  auto make = [&]() -> std::shared_ptr<const SceneGeometry> {
+    auto g = std::make_shared<SceneGeometry>();
+    if (transparency) {
+      g->mesh = build_mesh(scene, view, detail, opaque);
+    } else {  // the whole mesh (it casts shadows) without its transparent primitives, from the full one
+      g->full = scene_geometry(ctx, scene, view, detail, opaque, true);
+      g->mesh = g->full->mesh;
+      g->mesh.indices.clear();
+      g->mesh.line_indices.clear();
+    }
+    g->transparent = std::make_unique<GpuMesh>(g->mesh);
+    if (opaque) g->opaque = std::make_unique<GpuMesh>(g->mesh, g->mesh.opaque_indices);
+    return g;
+  };
+  if (!ctx.shared()) return make();
+  return ctx.shared()->get<SceneGeometry>(geometry_key(scene, view.name, detail, opaque, transparency), make);
+}
+
 ScenePasses::ScenePasses(const ParamSet& p, CaseContext& ctx)
     : scene_(load_scene(p.get("scene"))),
       view_(scene_.view(p.get("view"))),
@@ -75,21 +108,17 @@ ScenePasses::ScenePasses(const ParamSet& p, CaseContext& ctx)
     throw SceneError(e.what());
   }
   const bool opaque = has("opaque");
-  mesh_ = build_mesh(scene_, view_, p.get("detail") == "small" ? Detail::Small : Detail::Full, opaque);
+  const Detail detail = p.get("detail") == "small" ? Detail::Small : Detail::Full;
+  // Built once per run for every case of this scene, view and effects (core/shared_cache.hpp).
+  geometry_ = scene_geometry(ctx, scene_, view_, detail, opaque, has("transparency"));
   // Every primitive casts its shadow, whatever else runs; built once now for the first capture.
   if (has("self-shadowing")) {
-    shadow_ = make_self_shadowing(ctx, scene_, mesh_, p);
+    shadow_ = make_self_shadowing(ctx, scene_, geometry_->full ? geometry_->full->mesh : geometry_->mesh, p);
     if (shadow_) shadow_->build();
   }
-  if (!has("transparency")) {  // nothing transparent is drawn
-    mesh_.indices.clear();
-    mesh_.line_indices.clear();
-  }
-  transparent_ = std::make_unique<GpuMesh>(mesh_);
-  view_proj_ = oit::view_projection(view_, mesh_, static_cast<float>(width_) / height_);
+  view_proj_ = oit::view_projection(view_, geometry_->mesh, static_cast<float>(width_) / height_);
   if (opaque) {
     opaque_ = std::make_unique<Opaque>();
-    opaque_->mesh = std::make_unique<GpuMesh>(mesh_, mesh_.opaque_indices);
     opaque_->program = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/opaque.frag"}},
                                  geometry_defines());
     opaque_->fbo = gl::make_framebuffer();
@@ -137,7 +166,7 @@ void ScenePasses::draw_opaque() {
   glDisable(GL_CULL_FACE);
   bind_geometry(opaque_->program.get());
   glUseProgram(opaque_->program.get());
-  opaque_->mesh->draw();
+  geometry_->opaque->draw();
   glDisable(GL_DEPTH_TEST);
 }
 

@@ -37,6 +37,19 @@ std::string join_effects(const std::vector<std::string>& effects);  // "opaque+t
 std::vector<std::string> effect_pass_names(const std::vector<std::string>& effects,
                                            const std::vector<std::string>& technique_passes);
 
+// One view of a scene as the cases draw it: the mesh (without its transparent primitives where the
+// transparency effect is off) and its GPU copies. Immutable once built; shared by every case of a run
+// that draws the same scene, view, detail and effects (CaseContext::shared()).
+struct SceneGeometry {
+  Mesh mesh;
+  std::unique_ptr<GpuMesh> transparent;       // mesh.indices and mesh.line_indices
+  std::unique_ptr<GpuMesh> opaque;            // mesh.opaque_indices (the opaque effect only)
+  std::shared_ptr<const SceneGeometry> full;  // without transparency: the mesh it was cut from
+};
+// The run's shared geometry for this view (built on first use), or a new one where ctx shares nothing.
+std::shared_ptr<const SceneGeometry> scene_geometry(CaseContext& ctx, const SceneDesc& scene, const View& view,
+                                                    Detail detail, bool opaque, bool transparency);
+
 class ScenePasses {
  public:
   // Loads the scene (p "scene", "view", "detail", "effects") and builds its meshes for the view.
@@ -44,8 +57,8 @@ class ScenePasses {
 
   const SceneDesc& scene() const { return scene_; }
   const View& view() const { return view_; }
-  const Mesh& mesh() const { return mesh_; }
-  GpuMesh& transparent() { return *transparent_; }  // what the technique's geometry passes draw
+  const Mesh& mesh() const { return geometry_->mesh; }
+  const GpuMesh& transparent() const { return *geometry_->transparent; }  // what the technique's geometry passes draw
   const std::vector<std::string>& effects() const { return effects_; }
   bool has(const std::string& effect) const;
   bool opaque() const { return opaque_ != nullptr; }
@@ -98,14 +111,12 @@ class ScenePasses {
   SceneDesc scene_;
   View view_;
   std::vector<std::string> effects_;
-  Mesh mesh_;
-  std::unique_ptr<GpuMesh> transparent_;
+  std::shared_ptr<const SceneGeometry> geometry_;
   glm::mat4 view_proj_{1.0f};
   int width_, height_;
   bool skip_depth_test_;  // fault=no-opaque-depth
 
   struct Opaque {
-    std::unique_ptr<GpuMesh> mesh;
     gl::Program program;
     gl::Framebuffer fbo;
     gl::Texture colour, depth;  // RGBA32F; DEPTH32F_STENCIL8 (float: the CPU compares the same values)

@@ -136,9 +136,9 @@ TEST(Sampling, EveryCaseRunsWithItsBaselineAndCarriesAPairedSpeedup) {
   std::map<std::string, std::set<std::string>> group_members;
   for (auto& r : read_csv_rows(raw))
     if (r["pass"] == "total") group_members[r["group"]].insert(r["technique"] + "/" + r["view"]);
-  EXPECT_EQ(group_members.size(), 4u);  // oit interleaves 2 cases: BASE-IS with each of 2 techniques, 2 views
+  EXPECT_EQ(group_members.size(), 2u);  // at 32x32 oit interleaves up to 8 cases: one group per view
   for (auto& [g, members] : group_members) {
-    EXPECT_EQ(members.size(), 2u);
+    EXPECT_EQ(members.size(), 3u);
     std::string view;
     bool has_base = false;
     for (auto& m : members) {

@@ -132,13 +132,13 @@ TEST(Presets, MalformedHardwareSizesNameFileLineColumnAndEntry) {
   EXPECT_EQ(preset_error(entry_with(R"({"resolution": "0x1080"})")),
             "t.json:1:52: runs[0].hardware.resolution: resolution '0x1080': each side must be in [1, 16384]");
   EXPECT_EQ(preset_error(entry_with(R"({"size": "1920x1080"})")),
-            "t.json:1:52: runs[0].hardware.size: unknown key \"size\"; expected resolution, reps, warmup");
+            "t.json:1:52: runs[0].hardware.size: unknown key \"size\"; expected resolution, reps, warmup, set");
   EXPECT_EQ(preset_error(entry_with(R"("1920x1080")")),
-            "t.json:1:39: runs[0].hardware: expected an object with one or more of resolution, reps, warmup (the "
-            "sizes on hardware drivers), got string");
+            "t.json:1:39: runs[0].hardware: expected an object with one or more of resolution, reps, warmup, set "
+            "(what changes on hardware drivers), got string");
   EXPECT_EQ(preset_error(entry_with("{}")),
-            "t.json:1:39: runs[0].hardware: expected an object with one or more of resolution, reps, warmup (the "
-            "sizes on hardware drivers), got {}");
+            "t.json:1:39: runs[0].hardware: expected an object with one or more of resolution, reps, warmup, set "
+            "(what changes on hardware drivers), got {}");
   // The entry's own keys are placed the same way now.
   EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "sett": {}}]})"),
             "t.json:1:39: runs[0].sett: unknown key \"sett\"; expected experiment, set, resolution, reps, warmup, "
@@ -298,6 +298,47 @@ TEST(Registry, AMetricWithAParametersNameFailsAtRegistration) {
       std::logic_error);  // oit's rmse is a number
   EXPECT_NO_THROW(
       registry.add(std::make_unique<ClashingExperiment>(std::vector<MetricSpec>{{"rmse", ValueType::Number, "", ""}})));
+}
+
+TEST(Presets, AHardwareSetReplacesItsListsOnHardwareOnlyAndIsCheckedEverywhere) {
+  auto p = parse_preset("t", "t.json", R"({"runs": [{"experiment": "occupancy",
+    "set": {"size": [1, 2], "draws": 8}, "hardware": {"set": {"size": [1, 2, 4]}}}]})");
+  ASSERT_EQ(p.runs.size(), 1u);
+  const RunRequest& r = p.runs[0];
+  ASSERT_TRUE(r.hardware);
+  EXPECT_EQ(request_overrides(r, false).at("size"), (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(request_overrides(r, true).at("size"), (std::vector<std::string>{"1", "2", "4"}));
+  EXPECT_EQ(request_overrides(r, true).at("draws"), (std::vector<std::string>{"8"}));  // kept
+  Registry registry;
+  register_all_experiments(registry);
+  EXPECT_NO_THROW(check_requests(registry, {r}));
+  // A wrong name or value in the hardware set is refused on a software renderer too.
+  RunRequest bad = r;
+  bad.hardware->set = {{"sise", {"4"}}};
+  try {
+    check_requests(registry, {bad});
+    ADD_FAILURE() << "a hardware set naming no parameter was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("no parameter 'sise' (in its hardware set)"), std::string::npos) << e.what();
+  }
+  bad.hardware->set = {{"size", {"-3"}}};
+  EXPECT_THROW(check_requests(registry, {bad}), UsageError);
+  EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "hardware": {"set": {"size": []}}}]})"),
+            "t.json:1:60: runs[0].hardware.set.size: empty value list");
+  EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "hardware": {"set": 3}}]})"),
+            "t.json:1:52: runs[0].hardware.set: expected an object of parameter lists");
+}
+
+TEST(Presets, OitInterleavesMoreCasesWhereTheirNodePoolsAreSmall) {
+  Registry registry;
+  register_all_experiments(registry);
+  const Experiment& oit = *registry.find("oit");
+  EXPECT_EQ(oit.max_interleave({128, 128}), 8);
+  EXPECT_EQ(oit.max_interleave({256, 256}), 8);
+  EXPECT_EQ(oit.max_interleave({512, 512}), 4);
+  EXPECT_EQ(oit.max_interleave({800, 800}), 2);
+  EXPECT_EQ(oit.max_interleave({1920, 1080}), 2);  // a case and its baseline, never fewer
+  EXPECT_EQ(oit.max_interleave({16384, 16384}), 2);
 }
 
 }  // namespace oitbench
