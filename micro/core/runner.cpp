@@ -335,17 +335,23 @@ class Runner {
     int size_checks = 0;
     bool checked_size = false;
     std::vector<Row> first_round_raw;  // a checked round's raw rows wait until its sizes are confirmed
+    // A case whose own interval reached the target stops (stop=target) while the others go on; a baseline
+    // goes on while a case it pairs with does (sampling.hpp: step_group).
+    std::vector<bool> done(live.size(), false);
     for (int r = 0; !stop_now(); ++r) {
-      std::vector<std::vector<double>> totals;
-      for (const auto& c : live)
-        if (c.active())
-          totals.push_back(c.record.cpu.count("total") ? c.record.cpu.at("total") : std::vector<double>{});
-      if (totals.empty()) break;
-      why = stop_group(policy, totals, ms_since(timed_start) / 1000.0);
+      std::vector<std::vector<double>> totals(live.size());
+      bool any_active = false;
+      for (size_t i = 0; i < live.size(); ++i)
+        if (live[i].active()) {
+          any_active = true;
+          if (live[i].record.cpu.count("total")) totals[i] = live[i].record.cpu.at("total");
+        }
+      if (!any_active) break;
+      why = step_group(policy, totals, group.baseline_of, ms_since(timed_start) / 1000.0, done);
       if (why != StopReason::Continue) break;
       for (size_t i = 0; i < live.size(); ++i) {
         auto& c = live[i];
-        if (!c.active() || stop_now()) continue;
+        if (!c.active() || done[i] || stop_now()) continue;
         auto& rec = c.record;
         watchdog_->set_current(exp.name() + " " + rec.params.describe());
         try {
@@ -396,6 +402,7 @@ class Runner {
             c.record.cpu.clear();
             c.record.gpu.clear();
           }
+          done.assign(live.size(), false);
           first_round_raw.clear();
           timed_start = Clock::now();  // a round taken as warm-up is not timed work
           r = -1;                      // the next round is the first timed one again
@@ -412,7 +419,8 @@ class Runner {
     RowSettings summary = settings;
     for (const auto& [k, v] : gpu_state_columns(gpu_start, gpu_end)) summary.run[k] = v;
     const std::string clock_note = clock_change_note(gpu_start, gpu_end);
-    for (auto& c : live) {
+    for (size_t i = 0; i < live.size(); ++i) {
+      auto& c = live[i];
       auto& rec = c.record;
       if (c.instance) {
         for (const auto& [k, v] : c.instance->metrics()) rec.metrics[k] = v;
@@ -432,8 +440,9 @@ class Runner {
       // The cases that ran while the clocks moved say so (those that never ran have nothing to qualify).
       if (!clock_note.empty() && (rec.status == Status::Ok || rec.status == Status::Invalid)) rec.add_note(clock_note);
       if (rec.status == Status::Ok && rec.cpu.count("total")) {
-        rec.stop = stop_reason_name(why);
-        if (auto note = ci_note(policy, rec.cpu.at("total"), why); !note.empty()) rec.add_note(note);
+        const StopReason case_why = done[i] ? StopReason::Target : why;
+        rec.stop = stop_reason_name(case_why);
+        if (auto note = ci_note(policy, rec.cpu.at("total"), case_why); !note.empty()) rec.add_note(note);
       }
     }
     // Rows after every case of the group is validated: a speedup needs its baseline's status.

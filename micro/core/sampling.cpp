@@ -88,6 +88,37 @@ StopReason stop_group(const SamplingPolicy& p, const std::vector<std::vector<dou
   return StopReason::Target;
 }
 
+StopReason step_group(const SamplingPolicy& p, const std::vector<std::vector<double>>& samples,
+                      const std::vector<int>& baseline_of, double spent_s, std::vector<bool>& done) {
+  const size_t n = samples.size();
+  done.resize(n, false);
+  if (p.adaptive)
+    for (int baselines = 0; baselines < 2; ++baselines)  // the cases first, then the baselines they free
+      for (size_t i = 0; i < n; ++i) {
+        bool is_baseline = false, pairs_open = false;
+        for (size_t j = 0; j < n && j < baseline_of.size(); ++j)
+          if (baseline_of[j] == static_cast<int>(i)) {
+            is_baseline = true;
+            pairs_open |= !samples[j].empty() && !done[j];
+          }
+        if (done[i] || samples[i].empty() || is_baseline != (baselines == 1) || pairs_open) continue;
+        done[i] = stop_group(p, {samples[i]}, 0) == StopReason::Target;
+      }
+  // The limits count every case (one that stopped leaves its share of the time); the target only those
+  // still running.
+  std::vector<std::vector<double>> running(n);
+  bool any = false;
+  for (size_t i = 0; i < n; ++i)
+    if (!done[i] && !samples[i].empty()) {
+      running[i] = samples[i];
+      any = true;
+    }
+  size_t reps = 0;
+  for (const auto& x : samples) reps = std::max(reps, x.size());
+  if (!any && reps > 0) return p.adaptive ? StopReason::Target : stop_group(p, samples, spent_s);
+  return stop_group(p, any ? running : samples, spent_s);
+}
+
 std::string ci_note(const SamplingPolicy& p, const std::vector<double>& s, StopReason why) {
   if (s.empty()) return "";
   const Interval ci = median_interval(s);

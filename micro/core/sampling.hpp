@@ -41,6 +41,14 @@ int units_per_run(double rep_ms, int nominal, double min_sample_ms, double max_s
 // times (of the statistic the stopping rule watches: the total); `spent_s` the timed seconds so far.
 enum class StopReason { Continue, Fixed, Target, MaxReps, MaxTime };
 StopReason stop_group(const SamplingPolicy& policy, const std::vector<std::vector<double>>& samples, double spent_s);
+// One round's decision for an interleaved group under the stopping rule, case by case: a case whose own
+// interval reached the target is marked done (it stops running; its rows say stop=target), except a
+// baseline while a case that pairs with it still runs (baseline_of[i]: index of case i's baseline, -1 none),
+// so every pair keeps its rounds. `samples[i]` empty: a case that does not run (failed). The limits
+// (--max-reps, --max-case-s x the group's size) stop the rest; the group stops with Target once every
+// case is done. A fixed count marks nothing and stops at the count.
+StopReason step_group(const SamplingPolicy& policy, const std::vector<std::vector<double>>& samples,
+                      const std::vector<int>& baseline_of, double spent_s, std::vector<bool>& done);
 // For a case whose repetitions stopped: its note when its interval missed the target (empty when it made
 // it, or when the count was fixed), e.g. "ci +-7.1% > target +-3% (stopped by --max-reps 30)".
 std::string ci_note(const SamplingPolicy& policy, const std::vector<double>& samples, StopReason why);

@@ -104,8 +104,9 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"target_ci_pct", T::Number, "%",
        "--target-ci the stopping rule aimed at (the total's interval); empty for a fixed count", "timing"},
       {"stop", T::Text, "",
-       "why the repetitions stopped: fixed (--reps or a preset's reps), target (every case of the interleaved group "
-       "reached target_ci_pct), max-reps or max-case-s (a limit; reason says when the target was missed)",
+       "why the repetitions stopped: fixed (--reps or a preset's reps), target (its interval reached "
+       "target_ci_pct; a baseline's once its cases' had too), max-reps or max-case-s (a limit; reason says when the "
+       "target was missed)",
        "timing"},
       {"sample_runs", T::Integer, "",
        "runs of the case's repetition inside one sample (chosen from the warm-up so a sample lasts "

@@ -88,6 +88,85 @@ TEST(Sampling, ANoisyCaseHoldsItsGroupUntilItsIntervalIsNarrow) {
   EXPECT_LE(relative_half_width(median_interval(s[1]), median_of(s[1])), p.target_ci);
 }
 
+// The same workload under step_group: a case stops at its own target, a baseline when its cases have.
+std::vector<std::vector<double>> drive_cases(const SamplingPolicy& p, std::vector<double> noise,
+                                             std::vector<int> baseline_of, StopReason& why, std::vector<bool>& done,
+                                             double ms_per_rep = 10) {
+  std::mt19937 rng(7);
+  std::vector<std::vector<double>> s(noise.size());
+  double spent = 0;
+  done.clear();
+  while ((why = step_group(p, s, baseline_of, spent, done)) == StopReason::Continue) {
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (done[i]) continue;
+      std::uniform_real_distribution<double> u(-noise[i], noise[i]);
+      s[i].push_back(ms_per_rep * (1 + u(rng)));
+      spent += ms_per_rep / 1000.0;
+    }
+    if (s.back().size() > 10000) break;
+  }
+  return s;
+}
+
+TEST(Sampling, AQuietCaseStopsAtItsTargetWhileANoisyOneGoesOn) {
+  SamplingPolicy p;
+  p.adaptive = true;
+  p.max_reps = 1000;
+  p.max_case_s = 1e9;
+  StopReason why;
+  std::vector<bool> done;
+  auto s = drive_cases(p, {0.01, 0.15}, {-1, -1}, why, done);
+  EXPECT_EQ(why, StopReason::Target);
+  EXPECT_EQ(static_cast<int>(s[0].size()), p.min_reps());  // done after the first interval
+  EXPECT_GT(s[1].size(), 20u);                             // the noisy one alone went on
+  EXPECT_TRUE(done[0] && done[1]);
+  for (const auto& x : s) EXPECT_LE(relative_half_width(median_interval(x), median_of(x)), p.target_ci);
+}
+
+TEST(Sampling, ABaselineRunsAsLongAsACaseItPairsWith) {
+  SamplingPolicy p;
+  p.adaptive = true;
+  p.max_reps = 1000;
+  p.max_case_s = 1e9;
+  StopReason why;
+  std::vector<bool> done;
+  // Case 0 is the baseline of 1 (noisy) and 2 (quiet); 3 is on its own.
+  auto s = drive_cases(p, {0.01, 0.15, 0.01, 0.01}, {-1, 0, 0, -1}, why, done);
+  EXPECT_EQ(why, StopReason::Target);
+  EXPECT_GT(s[1].size(), 20u);
+  EXPECT_EQ(s[0].size(), s[1].size());  // every sample of the noisy case has its baseline's of the same round
+  EXPECT_EQ(static_cast<int>(s[2].size()), p.min_reps());
+  EXPECT_EQ(static_cast<int>(s[3].size()), p.min_reps());
+  // A baseline whose cases failed (no samples) is free to stop at its own target.
+  std::vector<std::vector<double>> failed = {std::vector<double>(6, 10.0), {}};
+  done.clear();
+  EXPECT_EQ(step_group(p, failed, {-1, 0}, 0, done), StopReason::Target);
+  EXPECT_TRUE(done[0]);
+}
+
+TEST(Sampling, TheGroupsLimitsCountTheCasesThatStopped) {
+  SamplingPolicy p;
+  p.adaptive = true;
+  p.max_reps = 1000;
+  p.max_case_s = 0.75;  // two cases: 1.5 s in all, however many still run
+  StopReason why;
+  std::vector<bool> done;
+  auto s = drive_cases(p, {0.0, 0.5}, {-1, -1}, why, done, 100);
+  EXPECT_EQ(why, StopReason::MaxTime);
+  EXPECT_TRUE(done[0]);
+  EXPECT_FALSE(done[1]);
+  EXPECT_EQ(s[0].size(), 6u);
+  EXPECT_EQ(s[1].size(), 6u + 3u);  // 1.2 s for both, then 0.3 s for the noisy one alone
+  // A fixed count stops nobody early.
+  SamplingPolicy fixed;
+  fixed.reps = 4;
+  s = drive_cases(fixed, {0.0, 0.5}, {-1, -1}, why, done);
+  EXPECT_EQ(why, StopReason::Fixed);
+  EXPECT_EQ(s[0].size(), 4u);
+  EXPECT_EQ(s[1].size(), 4u);
+  EXPECT_FALSE(done[0] || done[1]);
+}
+
 TEST(Sampling, LimitsStopWhatTheTargetCannot) {
   SamplingPolicy p;
   p.adaptive = true;
