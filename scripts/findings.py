@@ -1033,8 +1033,8 @@ def section_resolve_speedups(f):
     if oit:
         r0 = oit[0]
         paired = any(r.get("speedup") for r in oit)
-        lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}): the oit experiment interleaves two "
-                  "cases at a time, so each candidate ran in one group with its baseline and its speedup "
+        lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}): each candidate ran in an interleaved "
+                  "group that holds its baseline, so its speedup "
                   "(baseline time / its time) is a ratio of medians taken side by side"
                   + (" (the rows' `speedup`: the median of the per-repetition ratios)" if paired else "")
                   + ". The order check's candidates are paired with BASE-IS with the order check, chained "
