@@ -104,19 +104,17 @@ StopReason step_group(const SamplingPolicy& p, const std::vector<std::vector<dou
         if (done[i] || samples[i].empty() || is_baseline != (baselines == 1) || pairs_open) continue;
         done[i] = stop_group(p, {samples[i]}, 0) == StopReason::Target;
       }
-  // The limits count every case (one that stopped leaves its share of the time); the target only those
-  // still running.
-  std::vector<std::vector<double>> running(n);
-  bool any = false;
+  // The limits count every case that runs or ran (one that stopped leaves its share of the time, one that
+  // failed does not); the target only those still running.
+  std::vector<std::vector<double>> counted;
+  bool running = false;
   for (size_t i = 0; i < n; ++i)
-    if (!done[i] && !samples[i].empty()) {
-      running[i] = samples[i];
-      any = true;
+    if (!samples[i].empty()) {
+      counted.push_back(done[i] ? std::vector<double>{} : samples[i]);
+      running |= !done[i];
     }
-  size_t reps = 0;
-  for (const auto& x : samples) reps = std::max(reps, x.size());
-  if (!any && reps > 0) return p.adaptive ? StopReason::Target : stop_group(p, samples, spent_s);
-  return stop_group(p, any ? running : samples, spent_s);
+  if (!counted.empty() && !running) return StopReason::Target;
+  return stop_group(p, counted, spent_s);
 }
 
 std::string ci_note(const SamplingPolicy& p, const std::vector<double>& s, StopReason why) {

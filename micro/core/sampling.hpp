@@ -45,8 +45,8 @@ StopReason stop_group(const SamplingPolicy& policy, const std::vector<std::vecto
 // interval reached the target is marked done (it stops running; its rows say stop=target), except a
 // baseline while a case that pairs with it still runs (baseline_of[i]: index of case i's baseline, -1 none),
 // so every pair keeps its rounds. `samples[i]` empty: a case that does not run (failed). The limits
-// (--max-reps, --max-case-s x the group's size) stop the rest; the group stops with Target once every
-// case is done. A fixed count marks nothing and stops at the count.
+// (--max-reps, --max-case-s x the cases that ran, stopped or not) stop the rest; the group stops with
+// Target once every case is done. A fixed count marks nothing and stops at the count.
 StopReason step_group(const SamplingPolicy& policy, const std::vector<std::vector<double>>& samples,
                       const std::vector<int>& baseline_of, double spent_s, std::vector<bool>& done);
 // For a case whose repetitions stopped: its note when its interval missed the target (empty when it made

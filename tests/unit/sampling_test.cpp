@@ -160,6 +160,10 @@ TEST(Sampling, TheGroupsLimitsCountTheCasesThatStopped) {
   EXPECT_FALSE(done[1]);
   EXPECT_EQ(s[0].size(), 6u);
   EXPECT_EQ(s[1].size(), 6u + 3u);  // 1.2 s for both, then 0.3 s for the noisy one alone
+  // A case that failed (no samples) leaves no share: one running case past its 0.75 s is stopped.
+  std::vector<std::vector<double>> with_failed = {{10, 15, 8, 12, 20, 9}, {}};
+  done.clear();
+  EXPECT_EQ(step_group(p, with_failed, {-1, -1}, 0.8, done), StopReason::MaxTime);
   // A fixed count stops nobody early.
   SamplingPolicy fixed;
   fixed.reps = 4;
