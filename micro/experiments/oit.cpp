@@ -1,5 +1,5 @@
 // oit: exact order-independent transparency (Knowles, Leach, Zambetta 2013 BMA and 2014 RBS;
-// micro/oit/exact_case.cpp) and approximate OIT (Brüll 2018; micro/oit/approx.cpp) on scenes kept
+// micro/oit/exact_case.cpp) and approximate OIT (Brüll 2018; micro/oit/approx_case.cpp) on scenes kept
 // as data (scenes/*.json). This file declares the parameter grid; the cases live in micro/oit/
 // so that `oitbench view` renders with the same code.
 #include <algorithm>
@@ -44,7 +44,7 @@ class OitExperiment final : public Experiment {
            "(PPLL) or packed per-pixel arrays (PPPA), resolved by "
            "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
            "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, "
-           "micro/oit/approx.cpp; MBOIT, Muenstermann 2018; STOCHASTIC, Enderton 2010, micro/oit/moments.hpp) "
+           "micro/oit/approx_case.cpp; MBOIT, Muenstermann 2018; STOCHASTIC, Enderton 2010, micro/oit/moments.hpp) "
            "is validated against each technique's own CPU model, its error vs the exact image reported as data. "
            "Depth peeling (Everitt 2001 DP, Bavoil & Myers 2008 DDP, micro/oit/peel_case.cpp) is exact when it "
            "peels every layer, validated against a CPU model of the layers it peeled when max_layers stops it";
@@ -211,7 +211,7 @@ class OitExperiment final : public Experiment {
          "pixels off the geometric composite with the fragment format's quantisation by more than the tolerance"},
         {"ambiguous_pixels", T::Integer, "",
          "pixels left out of the geometric comparison: a plane edge, the near or the far plane at the pixel centre"},
-        // approximate techniques (micro/oit/approx.cpp)
+        // approximate techniques (micro/oit/approx_case.cpp)
         {"model_rmse", T::Number, "", "rmse of the technique's CPU model against the exact reference"},
         {"model_max_diff", T::Number, "", "largest channel difference between the GPU image and the CPU model"},
         {"capped_updates", T::Integer, "", "insertions that gave up on the spinlock after SPIN_CAP tries"},

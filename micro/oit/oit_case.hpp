@@ -1,5 +1,5 @@
 #pragma once
-// The oit experiment's cases (exact: exact_case.cpp; approximate: approx.cpp) as objects that the
+// The oit experiment's cases (exact: exact_case.cpp; approximate: approx_case.cpp) as objects that the
 // experiment times and validates and that the interactive viewer (`oitbench view`) drives with its
 // own camera: the same code renders the benchmark and the picture a person looks at.
 #include <glm/glm.hpp>

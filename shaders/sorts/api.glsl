@@ -47,7 +47,7 @@
 // where it runs (shaders/sort/algorithms.glsl and the variant table in micro/experiments/sort.cpp;
 // shaders/oit/resolve_pixel.glsl and micro/oit/resolve_sort.cpp).
 //
-// Including: the shader assembler (micro/core/shader.cpp) emits a file once, at its first
+// Including: the shader assembler (micro/gl/shader.cpp) emits a file once, at its first
 // #include, whatever #if surrounds it. Include this file unconditionally before any #if that
 // selects a sort; it only defines macros, so it may come before the binding.
 #ifndef SORTS_API_GLSL
