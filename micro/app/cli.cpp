@@ -100,6 +100,10 @@ int run_cli(int argc, char** argv) {
   list->add_flag("--presets", lopt.presets, "List the presets (named grids in presets/*.json)");
   list->add_option("--schema", lopt.schema,
                    "Print the CSV schema (columns with role, type, unit and meaning; statuses) as FORMAT: json");
+  list->add_flag("--techniques", lopt.techniques,
+                 "List the oit experiment's techniques (family, resolve scheme and sort, parameters read, reference)");
+  list->add_flag("--json", lopt.json,
+                 "With --techniques: print the table as JSON (what scripts/techniques.json holds)");
   list->add_option("--presets-dir", lopt.preset_dir, "Preset directory (default: the source tree's presets/)");
 
   ContextOptions copt;

@@ -10,7 +10,9 @@ namespace oitbench::app {
 
 struct ListOptions {
   bool presets = false;
-  std::string schema;  // "json": print the result schema instead
+  std::string schema;       // "json": print the result schema instead
+  bool techniques = false;  // print the oit experiment's technique table instead
+  bool json = false;        // ... as JSON (scripts/techniques.json)
   std::string preset_dir;
 };
 // `list --presets` creates a context with `context` to say which of each entry's sizes applies here.

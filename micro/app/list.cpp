@@ -1,9 +1,10 @@
-// oitbench list: the experiments with their parameters, the presets, or the result schema.
+// oitbench list: the experiments with their parameters, the presets, the techniques, or the result schema.
 #include <cstdio>
 
 #include "app/commands.hpp"
 #include "core/presets.hpp"
 #include "core/schema.hpp"
+#include "oit/techniques.hpp"
 
 namespace oitbench::app {
 
@@ -75,12 +76,34 @@ void list_presets_command(const Registry& registry, const std::string& preset_di
   }
 }
 
+void list_techniques(bool json) {
+  if (json) {
+    std::fputs(oit::techniques_json().c_str(), stdout);
+    return;
+  }
+  std::printf("Techniques of the oit experiment (run with: oitbench run oit --set technique=NAME,...):\n\n");
+  std::printf("  %-11s %-12s %-6s %-7s %-20s %s\n", "name", "family", "scheme", "sort", "validated against",
+              "parameters it reads");
+  for (const auto& t : oit::techniques()) {
+    std::string params;
+    for (const auto& p : t.params) params += (params.empty() ? "" : " ") + p;
+    std::printf("  %-11s %-12s %-6s %-7s %-20s %s%s\n", t.name.c_str(), oit::family_label(t.family).c_str(),
+                oit::scheme_label(t.scheme).c_str(), t.sort.c_str(), oit::reference_label(t.reference()).c_str(),
+                params.c_str(), t.in_quick ? "  (--quick)" : "");
+  }
+}
+
 }  // namespace
 
 int list_command(const Registry& registry, const ListOptions& o, const ContextOptions& context) {
   if (!o.schema.empty()) {
     if (o.schema != "json") throw UsageError("list --schema: unknown format '" + o.schema + "'; valid: json");
     std::fputs(schema_json(registry).c_str(), stdout);
+    return 0;
+  }
+  if (o.json && !o.techniques) throw UsageError("list --json: only with --techniques (the schema: list --schema json)");
+  if (o.techniques) {
+    list_techniques(o.json);
     return 0;
   }
   if (o.presets) {

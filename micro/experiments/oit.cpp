@@ -20,6 +20,7 @@
 #include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
 #include "oit/scene_passes.hpp"
+#include "oit/techniques.hpp"
 
 namespace oitbench {
 
@@ -27,13 +28,11 @@ namespace {
 
 using namespace oit;
 
-std::vector<std::string> all_techniques() {  // exact, depth peeling, approximate
-  std::vector<std::string> t = exact_technique_names();
-  for (const auto& a : peel_technique_names()) t.push_back(a);
-  for (const auto& a : approx_technique_names()) t.push_back(a);
-  // MBOIT and STOCHASTIC before unsorted, which stays last: the no-OIT baseline.
-  t.insert(std::find(t.begin(), t.end(), "unsorted"), moment_technique_names().begin(), moment_technique_names().end());
-  return t;
+std::vector<std::string> techniques_where(bool Technique::*member) {
+  std::vector<std::string> out;
+  for (const auto& t : techniques())
+    if (t.*member) out.push_back(t.name);
+  return out;
 }
 
 class OitExperiment final : public Experiment {
@@ -68,9 +67,7 @@ class OitExperiment final : public Experiment {
         "IS insertion, IMS insertion+merge, RBS-L register block sort; BMA-AUTO the "
         "per-interval sort calibrated on this driver (cached); MLAB..unsorted, HT: approximate; DP, DDP: depth "
         "peeling",
-        exact_technique_names(),
-        {"BASE-IS", "BASE-RBS-L", "BMA-IS", "BMA-RBS-L", "CPU-NATIVE"},
-        all_techniques()};
+        techniques_where(&Technique::in_default), techniques_where(&Technique::in_quick), technique_names()};
     ParamSpec detail{
         "detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"}, {"full", "small"}};
     ParamSpec block{"block", "RBS block size MAX_REGISTERS (the paper: 32)", {"32"}, {"8"}, {"4", "8", "16", "32"}};
@@ -152,23 +149,6 @@ class OitExperiment final : public Experiment {
                           {"off"},
                           {},
                           {"off", "on"}};
-    // Each technique parameter is scoped to the techniques that read it, so a row carries only its own.
-    const auto& exact = exact_technique_names();
-    auto exact_but = [&](const std::string& skip) {
-      std::vector<std::string> v;
-      for (const auto& t : exact)
-        if (t != skip) v.push_back(t);
-      return v;
-    };
-    block.only_when("technique", {"BASE-RBS-L", "BMA-RBS-L", "CS-RBS-L", "RBS-G", "BMA-AUTO"});
-    pool.only_when("technique", exact);
-    max_frags.only_when("technique", exact_but("CPU-NATIVE"));
-    cs_group.only_when("technique", {"CS-IS", "CS-IMS", "CS-RBS-L"});
-    auto_cache.only_when("technique", {"BMA-AUTO"});
-    block_sort.only_when("technique", {"BASE-RBS-L", "BMA-RBS-L", "CS-RBS-L", "RBS-G"});
-    order_check.only_when("technique", {"BASE-IS", "BASE-IMS", "BMA-IS", "BMA-IMS", "CS-IS", "CS-IMS"});
-    frag_colour.only_when("technique", exact);
-    frag_depth.only_when("technique", exact);
     std::vector<ParamSpec> ps = {
         scene,      view,     technique,  effects_param(), capture,           detail,      block,      pool,
         max_frags,  cs_group, auto_cache, shadow_slices,   shadow_resolution, frag_colour, frag_depth, block_sort,
@@ -176,6 +156,10 @@ class OitExperiment final : public Experiment {
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     for (auto& a : peel_params()) ps.push_back(std::move(a));
     for (auto& a : moment_params()) ps.push_back(std::move(a));
+    // Each technique parameter is scoped to the techniques that read it (the technique table says
+    // which), so a row carries only its own.
+    for (auto& spec : ps)
+      if (auto readers = techniques_reading(spec.name); !readers.empty()) spec.only_when("technique", readers);
     return ps;
   }
   std::vector<MetricSpec> metric_specs() const override {

@@ -16,12 +16,8 @@
 
 namespace oitbench::oit {
 
+// The technique table (techniques.hpp) names them; its entries carry the enumerator.
 enum class ApproxTechnique { Mlab, Umlab, Ht, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted };
-
-const std::vector<std::string>& approx_technique_names();  // MLAB UMLAB HT AT HAT UAT UHAT LAAT WBOIT unsorted
-// Also true for MBOIT and STOCHASTIC (moments.hpp), which make_approx_case hands to their own cases.
-bool is_approx_technique(const std::string& name);
-ApproxTechnique parse_approx_technique(const std::string& name);  // throws std::invalid_argument
 
 // The parameters the approximate techniques add to the oit experiment (ignored by the exact ones).
 std::vector<ParamSpec> approx_params();

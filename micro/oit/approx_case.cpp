@@ -20,6 +20,7 @@
 #include "oit/scene.hpp"
 #include "oit/scene_passes.hpp"
 #include "oit/storage_layout.hpp"
+#include "oit/techniques.hpp"
 #include "shaders/approx/bindings.h"
 
 namespace oitbench::oit {
@@ -31,10 +32,6 @@ namespace {
 constexpr double kModelTolerance = 3.0 / 255.0;
 constexpr int kSpinCap = 1 << 16;
 
-// The order `oitbench list` and the viewer's T key step through (the enum's, approx.hpp).
-const std::vector<std::string> kNames = {"MLAB", "UMLAB", "HT",   "AT",    "HAT",
-                                         "UAT",  "UHAT",  "LAAT", "WBOIT", "unsorted"};
-
 std::string fmt(double v) {
   std::ostringstream s;
   s.precision(6);
@@ -43,22 +40,10 @@ std::string fmt(double v) {
 }
 }  // namespace
 
-const std::vector<std::string>& approx_technique_names() { return kNames; }
-bool is_approx_technique(const std::string& name) {
-  const auto& moments = moment_technique_names();
-  return std::find(kNames.begin(), kNames.end(), name) != kNames.end() ||
-         std::find(moments.begin(), moments.end(), name) != moments.end();
-}
-ApproxTechnique parse_approx_technique(const std::string& name) {
-  auto it = std::find(kNames.begin(), kNames.end(), name);
-  if (it == kNames.end()) throw std::invalid_argument("unknown approximate technique '" + name + "'");
-  return static_cast<ApproxTechnique>(it - kNames.begin());
-}
 std::vector<ParamSpec> approx_params() {
   using K = ParamSpec::Kind;
-  const std::vector<std::string> arrays = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT", "HT"};
-  const std::vector<std::string> guarded = {"AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT"};
-  std::vector<ParamSpec> ps = {
+  // Scoped to the techniques that read them by the technique table (micro/oit/techniques.cpp).
+  return {
       {"nodes",
        "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16); HT: its core's fragments",
        {"8"},
@@ -97,15 +82,6 @@ std::vector<ParamSpec> approx_params() {
        0,
        64},
   };
-  ps[0].only_when("technique", arrays);
-  ps[1].only_when("technique", arrays);
-  ps[2].only_when("technique", {"WBOIT"});
-  ps[3].only_when("technique", arrays);
-  ps[4].only_when("technique", guarded);
-  std::vector<std::string> all = approx_technique_names();
-  for (const auto& t : moment_technique_names()) all.push_back(t);
-  ps[5].only_when("technique", all);
-  return ps;
 }
 namespace {
 
@@ -120,7 +96,7 @@ class ApproxCase final : public OitCase {
         accum_(ctx.width(), ctx.height(), GL_RGBA32F),
         flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
         dump_(ctx.image_stem()) {
-    settings_.technique = parse_approx_technique(p.get("technique"));
+    settings_.technique = static_cast<ApproxTechnique>(technique(p.get("technique")).variant);
     settings_.nodes = static_cast<int>(p.get_int("nodes"));
     settings_.weight = p.get("wboit_weight");
     settings_.unguarded = p.get("guard") == "off";
@@ -448,8 +424,6 @@ class ApproxCase final : public OitCase {
 }  // namespace
 
 std::unique_ptr<OitCase> make_approx_case(const ParamSet& p, CaseContext& ctx) {
-  if (p.get("technique") == "MBOIT") return make_mboit_case(p, ctx);
-  if (p.get("technique") == "STOCHASTIC") return make_stochastic_case(p, ctx);
   return std::make_unique<ApproxCase>(p, ctx);
 }
 

@@ -30,6 +30,7 @@
 #include "oit/resolve_sort.hpp"
 #include "oit/scene.hpp"
 #include "oit/scene_passes.hpp"
+#include "oit/techniques.hpp"
 
 namespace oitbench::oit {
 
@@ -65,11 +66,11 @@ class ExactCase final : public OitCase {
         width_(ctx.width()),
         height_(ctx.height()),
         wrong_result_(ctx.fault() == "wrong-result"),
-        technique_(p.get("technique")),
-        bma_(technique_.starts_with("BMA-")),
-        native_(technique_ == "CPU-NATIVE"),
-        compute_(technique_.starts_with("CS-")),
-        auto_(technique_ == "BMA-AUTO"),
+        technique_(technique(p.get("technique"))),
+        bma_(technique_.scheme == ResolveScheme::Bma),
+        native_(technique_.scheme == ResolveScheme::Cpu),
+        compute_(technique_.scheme == ResolveScheme::Compute),
+        auto_(bma_ && !technique_.resolve_sort),  // BMA-AUTO: the sort chosen per interval
         use_auto_cache_(p.get("bma_auto_cache") == "on"),
         block_(static_cast<int>(p.get_int("block"))),
         block_sort_(parse_block_sort(p.has("block_sort") ? p.get("block_sort") : "insertion")),
@@ -477,7 +478,7 @@ class ExactCase final : public OitCase {
 
   // The sort's defines plus the storage layout's.
   // The technique's sort with its parameters (block_sort, order_check).
-  SortChoice technique_choice() const { return {sort_of_technique(technique_), block_sort_, order_check_}; }
+  SortChoice technique_choice() const { return {technique_.resolve_sort.value(), block_sort_, order_check_}; }
 
   // The sort's defines plus the storage layout's. A network block sort compares the fragment as one
   // 64-bit key where it packs into one (rgba8) and the driver has int64.
@@ -584,7 +585,7 @@ class ExactCase final : public OitCase {
   CaseContext ctx_;   // a copy: the runner's shader library outlives the case (intervals compile on demand)
   int width_, height_;
   bool wrong_result_;
-  std::string technique_;
+  const Technique& technique_;
   bool bma_, native_, compute_, auto_, use_auto_cache_;
   int block_;
   BlockSort block_sort_;
@@ -619,25 +620,8 @@ class ExactCase final : public OitCase {
 
 }  // namespace
 
-const std::vector<std::string>& exact_technique_names() {
-  static const std::vector<std::string> names = {"BASE-IS", "BASE-IMS",  "BASE-RBS-L", "BMA-IS",
-                                                 "BMA-IMS", "BMA-RBS-L", "CPU-NATIVE", "CS-IS",
-                                                 "CS-IMS",  "CS-RBS-L",  "RBS-G",      "BMA-AUTO"};
-  return names;
-}
-
 std::unique_ptr<OitCase> make_exact_case(const ParamSet& p, CaseContext& ctx) {
   return std::make_unique<ExactCase>(p, ctx);
-}
-
-std::unique_ptr<OitCase> make_oit_case(const ParamSet& p, CaseContext& ctx) {
-  try {
-    if (is_approx_technique(p.get("technique"))) return make_approx_case(p, ctx);
-    if (is_peel_technique(p.get("technique"))) return make_peel_case(p, ctx);
-    return make_exact_case(p, ctx);
-  } catch (const SceneError& e) {
-    throw std::runtime_error(std::string("oit: ") + e.what());
-  }
 }
 
 }  // namespace oitbench::oit

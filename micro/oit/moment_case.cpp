@@ -40,11 +40,6 @@ void set_view_proj(const gl::Program& prog, const glm::mat4& vp) {
 
 }  // namespace
 
-const std::vector<std::string>& moment_technique_names() {
-  static const std::vector<std::string> names = {"MBOIT", "STOCHASTIC"};
-  return names;
-}
-
 std::vector<ParamSpec> moment_params() {
   std::vector<ParamSpec> ps = {
       {"moments",
@@ -70,8 +65,6 @@ std::vector<ParamSpec> moment_params() {
        {},
        {"4", "8", "16"}},
   };
-  for (int i = 0; i < 3; ++i) ps[i].only_when("technique", {"MBOIT"});
-  ps[3].only_when("technique", {"STOCHASTIC"});
   return ps;
 }
 

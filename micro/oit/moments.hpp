@@ -26,9 +26,6 @@
 
 namespace oitbench::oit {
 
-// MBOIT STOCHASTIC: approximate techniques (approx.hpp's is_approx_technique knows them) with cases of their own.
-const std::vector<std::string>& moment_technique_names();
-
 enum class MomentKind { Power, Trigonometric };
 
 // MBOIT's variant. `moments` counts the real numbers stored beside the zeroth moment (the paper's

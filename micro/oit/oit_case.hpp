@@ -29,14 +29,8 @@ class OitCase : public CaseInstance {
   virtual unsigned max_frags() const { return 0; }
 };
 
-// BASE-IS ... BMA-AUTO, in the order `oitbench list` shows them.
-const std::vector<std::string>& exact_technique_names();
-
 // An exact technique's case (parameters as the oit experiment declares them, micro/experiments/oit.cpp).
 std::unique_ptr<OitCase> make_exact_case(const ParamSet& p, CaseContext& ctx);
-
-// The case for any technique, exact or approximate; a malformed scene is a std::runtime_error
-// starting "oit: file:line:column:".
-std::unique_ptr<OitCase> make_oit_case(const ParamSet& p, CaseContext& ctx);
+// The case for any technique: make_oit_case in techniques.hpp, the technique table.
 
 }  // namespace oitbench::oit

@@ -17,8 +17,8 @@
 
 namespace oitbench::oit {
 
-const std::vector<std::string>& peel_technique_names();  // DP DDP
-bool is_peel_technique(const std::string& name);
+// Which peeling a technique entry (techniques.hpp) runs: its variant.
+enum class PeelKind { Depth = 0, Dual = 1 };
 
 // The parameters the peeling techniques add to the oit experiment (max_layers, tie_rule).
 std::vector<ParamSpec> peel_params();

@@ -15,6 +15,7 @@
 #include "oit/reference.hpp"
 #include "oit/scene.hpp"
 #include "oit/scene_passes.hpp"
+#include "oit/techniques.hpp"
 #include "shaders/peel/bindings.h"
 
 namespace oitbench::oit {
@@ -25,7 +26,6 @@ namespace {
 constexpr double kTolerance = 2.0 / 255.0;
 // max_layers=0 peels until the query finds nothing; this bounds a runaway loop all the same.
 constexpr unsigned kIterationCap = 1u << 20;
-const std::vector<std::string> kNames = {"DP", "DDP"};
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -39,11 +39,6 @@ glm::dvec4 unpack(unsigned c) {
 }
 
 }  // namespace
-
-const std::vector<std::string>& peel_technique_names() { return kNames; }
-bool is_peel_technique(const std::string& name) {
-  return std::find(kNames.begin(), kNames.end(), name) != kNames.end();
-}
 
 std::vector<ParamSpec> peel_params() {
   std::vector<ParamSpec> ps = {
@@ -64,7 +59,6 @@ std::vector<ParamSpec> peel_params() {
        {},
        {"depth-colour", "depth"}},
   };
-  for (auto& s : ps) s.only_when("technique", kNames);
   return ps;
 }
 
@@ -127,7 +121,7 @@ class PeelCase final : public OitCase {
         scene_(fx_.scene()),
         out_(ctx.width(), ctx.height(), GL_RGBA32F),
         dump_(ctx.image_stem()) {
-    settings_.dual = p.get("technique") == "DDP";
+    settings_.dual = technique(p.get("technique")).variant == static_cast<int>(PeelKind::Dual);
     settings_.depth_only = p.get("tie_rule") == "depth";
     unsigned max_layers = static_cast<unsigned>(p.get_int("max_layers"));
     max_iterations_ = max_layers == 0 ? kIterationCap : (settings_.dual ? (max_layers + 1) / 2 : max_layers);

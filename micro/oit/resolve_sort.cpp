@@ -5,14 +5,6 @@
 
 namespace oitbench::oit {
 
-ResolveSort sort_of_technique(const std::string& technique) {
-  if (technique == "RBS-G" || technique.ends_with("-RBS-G")) return ResolveSort::RBS_G;
-  if (technique.ends_with("-RBS-L")) return ResolveSort::RBS_L;
-  if (technique.ends_with("-IMS")) return ResolveSort::IMS;
-  if (technique.ends_with("-IS")) return ResolveSort::IS;
-  throw std::invalid_argument("technique '" + technique + "' names no resolve sort (IS, IMS, RBS-L, RBS-G)");
-}
-
 std::string sort_label(ResolveSort sort) {
   switch (sort) {
     case ResolveSort::IS:

@@ -31,8 +31,6 @@ struct SortChoice {
 std::string choice_label(const SortChoice& choice);
 SortChoice parse_choice_label(const std::string& label);  // the inverse; throws std::invalid_argument
 
-// "BASE-IMS" -> IMS, "CS-RBS-L" -> RBS_L, "RBS-G" -> RBS_G; throws std::invalid_argument otherwise.
-ResolveSort sort_of_technique(const std::string& technique);
 std::string sort_label(ResolveSort sort);                // "IS", "IMS", "RBS-L", "RBS-G"
 ResolveSort parse_sort_label(const std::string& label);  // the inverse; throws std::invalid_argument
 // MAX_FRAGS plus SORT_IS | SORT_IMS (SORT_MERGE_HALF_SCRATCH) | SORT_RBS (RBS_M, MAX_K) |

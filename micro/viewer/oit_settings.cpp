@@ -2,14 +2,12 @@
 
 #include <algorithm>
 
-#include "oit/approx.hpp"
-#include "oit/oit_case.hpp"
+#include "oit/techniques.hpp"
 
 namespace oitbench::viewer {
 
 namespace {
 constexpr const char* kExperiment = "oit";
-const std::vector<std::string> kBmaSorts = {"IS", "IMS", "RBS-L"};  // the sorts with a BASE and a BMA form
 }  // namespace
 
 OitSettings::OitSettings(Registry& registry, const std::map<std::string, std::string>& chosen) {
@@ -40,16 +38,20 @@ void OitSettings::set(const std::string& name, const std::string& value) {
   params_.set(name, value);
 }
 
+// What the current technique is and reads, from the technique table (micro/oit/techniques.hpp).
 bool OitSettings::is_exact() const {
-  const auto& exact = oit::exact_technique_names();
-  return std::find(exact.begin(), exact.end(), technique()) != exact.end();
+  const oit::Technique* t = oit::find_technique(technique());
+  return t && t->family == oit::TechniqueFamily::Exact;
 }
 
-bool OitSettings::uses_max_frags() const { return is_exact() && technique() != "CPU-NATIVE"; }
+bool OitSettings::uses_max_frags() const {
+  const oit::Technique* t = oit::find_technique(technique());
+  return t && t->reads("max_frags");
+}
 
 bool OitSettings::uses_nodes() const {
-  return oit::is_approx_technique(technique()) && technique() != "WBOIT" && technique() != "unsorted" &&
-         has_param("nodes");
+  const oit::Technique* t = oit::find_technique(technique());
+  return t && t->reads("nodes") && has_param("nodes");
 }
 
 std::string OitSettings::step_technique(int step, bool& changed) {
@@ -64,15 +66,13 @@ std::string OitSettings::step_technique(int step, bool& changed) {
 
 std::string OitSettings::toggle_bma(bool& changed) {
   changed = false;
-  const std::string& t = technique();
-  for (const auto& sort : kBmaSorts) {
-    if (t == "BASE-" + sort || t == "BMA-" + sort) {
-      set("technique", (t.starts_with("BASE-") ? "BMA-" : "BASE-") + sort);
-      changed = true;
-      return "technique " + technique();
-    }
+  const oit::Technique* t = oit::find_technique(technique());
+  if (const oit::Technique* twin = t ? oit::bma_twin(*t) : nullptr) {
+    set("technique", twin->name);
+    changed = true;
+    return "technique " + technique();
   }
-  return "B: " + t + " has no BASE/BMA twin (B toggles BASE-IS/IMS/RBS-L <-> BMA-IS/IMS/RBS-L)";
+  return "B: " + technique() + " has no BASE/BMA twin (B toggles a BASE resolve and its BMA form)";
 }
 
 std::string OitSettings::scale_max_frags(bool up, unsigned in_use, bool& changed) {

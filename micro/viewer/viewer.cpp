@@ -22,6 +22,7 @@
 #include "oit/fragment_storage.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/scene.hpp"
+#include "oit/techniques.hpp"
 #include "viewer/depth_complexity.hpp"
 #include "viewer/fly_camera.hpp"
 #include "viewer/image_presenter.hpp"

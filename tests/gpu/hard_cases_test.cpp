@@ -12,6 +12,7 @@
 #include "oit/approx.hpp"
 #include "oit/image_compare.hpp"
 #include "oit/reference.hpp"
+#include "oit/techniques.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {
@@ -26,11 +27,13 @@ const std::vector<std::string> kExact = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "B
 
 std::vector<std::string> all_techniques() {
   std::vector<std::string> t = kExact;
-  for (const auto& a : oit::approx_technique_names()) t.push_back(a);
+  for (const auto& a : oit::technique_names(oit::TechniqueFamily::Approximate)) t.push_back(a);
   return t;
 }
 
-bool approximate(const std::string& t) { return oit::is_approx_technique(t); }
+bool approximate(const std::string& t) {  // validated against a CPU model of its own
+  return oit::technique(t).reference() == oit::TechniqueReference::CpuModel;
+}
 
 std::map<std::string, std::string> params(const std::string& scene, const std::string& technique) {
   return {{"scene", scene},     {"view", "fwd"}, {"technique", technique}, {"detail", "small"},
@@ -125,7 +128,7 @@ TEST_F(HardCases, EqualDepthsGiveTheSameFrameEveryTime) {
 TEST_F(HardCases, MoreFragmentsThanNodesOrMaxFrags) {
   // Approximations compress (and still match their model); the exact resolves truncate at
   // MAX_FRAGS, which their validator reports instead of passing silently.
-  for (const auto& t : oit::approx_technique_names()) {
+  for (const auto& t : oit::technique_names(oit::TechniqueFamily::Approximate)) {
     auto p = params("planes", t);
     p["nodes"] = "4";
     auto v = run_case("oit", p, {32, 32});
@@ -183,7 +186,7 @@ TEST_F(HardCases, Rgba8NodesBoundMlabPrecision) {
 }
 
 TEST_F(HardCases, EveryApproximateValidatorFailsOnAWrongResult) {
-  for (const auto& t : oit::approx_technique_names()) {
+  for (const auto& t : oit::technique_names(oit::TechniqueFamily::Approximate)) {
     auto p = params("hairball", t);
     p["fault"] = "wrong-result";
     auto v = run_case("oit", p, {32, 32});

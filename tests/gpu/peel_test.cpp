@@ -10,6 +10,7 @@
 
 #include "oit/approx.hpp"
 #include "oit/oit_case.hpp"
+#include "oit/techniques.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {
@@ -139,9 +140,9 @@ TEST_F(Peel, PeelingLeavesNoBlendStateForTheNextCase) {
 }
 
 TEST_F(Peel, EveryTechniqueRowCarriesItsBytesPerPixel) {
-  std::vector<std::string> all = oit::exact_technique_names();
-  for (const auto& a : oit::approx_technique_names()) all.push_back(a);
-  for (const auto& a : oit::peel_technique_names()) all.push_back(a);
+  std::vector<std::string> all = oit::technique_names(oit::TechniqueFamily::Exact);
+  for (const auto& a : oit::technique_names(oit::TechniqueFamily::Approximate)) all.push_back(a);
+  for (const auto& a : oit::technique_names(oit::TechniqueFamily::Peel)) all.push_back(a);
   for (const auto& t : all) {
     if (t == "BMA-AUTO") continue;  // calibrates first: slow here, and its storage is BMA's
     auto p = params("planes", t, "fwd");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "oit/oit_case.hpp"
+#include "oit/techniques.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {
@@ -30,7 +31,7 @@ bool has(const std::string& text, const std::string& part) { return text.find(pa
 
 TEST_F(Precision, ViewDepthKeepsLayersOneMicroApartInOrderInEveryExactTechnique) {
   // 8 layers 3e-6 apart at 3 units: every exact technique, both submission orders, both layouts.
-  for (const auto& t : oit::exact_technique_names())
+  for (const auto& t : oit::technique_names(oit::TechniqueFamily::Exact))
     for (const char* view : {"fwd", "rev"}) {
       auto p = params("precision-ulp-3", t, "rgba8", "view");
       p["view"] = view;
