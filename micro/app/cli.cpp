@@ -205,6 +205,13 @@ int run_cli(int argc, char** argv) {
                   "it is the baseline of (e.g. technique=BASE-IS); replaces a preset's")
       ->take_all()
       ->group(sizing);
+  std::string shard_text;
+  const char* fleet = "Fleets and CI (docs/ci.md)";
+  run->add_option("--shard", shard_text,
+                  "I/N: run the I-th of N disjoint parts of the grid (1 <= I <= N; together the whole grid, an "
+                  "interleaved group and its baseline never split); auto: I and N from a Slurm array, a Kubernetes "
+                  "Indexed Job or GitLab's parallel:")
+      ->group(fleet);
   run->add_option("--preset-name", ropt.preset_name, "Recorded in the preset column")->group("");
   run->add_flag("--isolated-child", ropt.isolated_child, "Set by the parent for an isolated case")->group("");
 
@@ -308,6 +315,12 @@ int run_cli(int argc, char** argv) {
     ropt.interleave = !no_interleave;
     ropt.program_cache = !no_program_cache;
     ropt.progress = !no_progress;
+    if (!shard_text.empty()) {
+      ropt.shard = parse_shard(shard_text);
+      if (!ropt.shard.source.empty())
+        std::fprintf(stderr, "oitbench: --shard auto: shard %s from %s\n", ropt.shard.text().c_str(),
+                     ropt.shard.source.c_str());
+    }
     return run_command(registry, rc);
   } catch (const UsageError& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());

@@ -21,6 +21,7 @@ std::string fmt_number(double v, int prec = 4);  // empty for NaN and infinities
 // What one case produced, kept until its rows are written.
 struct CaseRecord {
   ParamSet params;
+  std::string key;  // case_key (core/plan.hpp) of the grid's case, before prepare resolves any value
   std::string variant;
   Status status = Status::Ok;
   std::string reason;

@@ -16,6 +16,7 @@
 #include "core/groups.hpp"
 #include "core/interrupt.hpp"
 #include "core/isolation.hpp"
+#include "core/plan.hpp"
 #include "core/progress.hpp"
 #include "core/rows.hpp"
 #include "gl/render_target.hpp"
@@ -42,15 +43,6 @@ struct LiveCase {
   CaseRecord record;
   std::unique_ptr<CaseInstance> instance;
   bool active() const { return instance && record.status == Status::Ok; }
-};
-
-struct Planned {
-  Experiment* exp;
-  Resolution res;
-  int reps, warmup;
-  std::vector<ParamSet> cases;
-  SamplingPolicy policy;                        // fixed `reps`, or the stopping rule
-  std::map<std::string, std::string> baseline;  // the request's baseline (speedups), empty: none
 };
 
 // One sample: `runs` runs of the case's repetition inside one PassTimer repetition, each pass's times
@@ -84,7 +76,6 @@ class Runner {
       return unsupported_driver(requests, e);
     }
     gl_ = GlInfo::query();
-    gl_info_known_ = true;
     gpu_ = GpuMonitor::for_gl_context(gl_.vendor, gl_.renderer);
     shaders_ = std::make_unique<ShaderLibrary>(opt_.shader_root);
     if (opt_.program_cache && gl_.has_extension("GL_ARB_get_program_binary"))
@@ -104,27 +95,19 @@ class Runner {
                          {"gl_version", gl_.version},
                          {"gpu_driver_version", gpu_.driver_version()}});
 
-    // Expand every request first so progress can say "case i of n".
-    std::vector<Planned> plan = make_plan(requests);
+    // Expand every request first so progress can say "case i of n"; with --shard, this shard's units only.
+    const std::vector<Planned> plan = make_plan(registry_, requests, opt_, !gl_.is_software_renderer());
+    const std::vector<RunUnit> units = plan_units(plan, opt_, opt_.shard);
     size_t total_cases = 0;
-    for (const auto& p : plan) total_cases += p.cases.size();
+    for (const auto& u : units) total_cases += u.rows();
     progress_ = std::make_unique<Progress>(opt_.progress, total_cases);
     watchdog_ = std::make_unique<Watchdog>(opt_.timeout_s, opt_.out, opt_.progress);
-    for (auto& p : plan) {
+    for (const auto& u : units) {
       if (signals_.stopped()) break;
-      bool isolate = opt_.isolate == "always" || (opt_.isolate == "auto" && p.exp->hang_prone());
-      if (isolate) {
-        for (auto& c : p.cases) {
-          if (signals_.stopped()) break;
-          run_isolated(p, c);
-        }
-      } else {
-        size_t chunk = opt_.interleave ? static_cast<size_t>(std::max(1, p.exp->max_interleave(p.res))) : 1;
-        for (const auto& g : plan_groups(p.cases, p.baseline, chunk)) {
-          if (signals_.stopped()) break;
-          run_group(p, g);
-        }
-      }
+      if (u.isolated)
+        run_isolated(plan[u.planned], u.group.cases[0]);
+      else
+        run_group(plan[u.planned], u.group);
     }
     watchdog_.reset();
     progress_->finish();
@@ -143,24 +126,6 @@ class Runner {
   }
 
  private:
-  std::vector<Planned> make_plan(const std::vector<RunRequest>& requests) const {
-    std::vector<Planned> plan;
-    for (const auto& r : requests) {
-      Experiment* e = registry_.find(r.experiment);
-      const bool quick = opt_.quick || r.quick;
-      // Known only now that the context exists; without one (an unsupported driver) the entry's own sizes.
-      const bool hardware = gl_info_known_ && !gl_.is_software_renderer();
-      RunSize size = resolve_run_size(r, *e, opt_, hardware);
-      SamplingPolicy policy = opt_.sampling;
-      policy.adaptive = !size.fixed_reps;
-      policy.reps = size.reps;
-      plan.push_back({e, size.resolution, size.reps, size.warmup,
-                      expand_grid(registry_.params_of(*e), request_overrides(r, hardware), quick, opt_.max_cases),
-                      policy, r.baseline});
-    }
-    return plan;
-  }
-
   // The driver gives no GL 4.5 core context: every case is `unsupported`, with the version it offered.
   int unsupported_driver(const std::vector<RunRequest>& requests, const ContextUnsupported& e) {
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
@@ -168,11 +133,14 @@ class Runner {
     run_columns_.insert(
         {{"backend", opt_.context.backend}, {"driver", opt_.context.driver}, {"gl_version", e.offered()}});
     size_t cases = 0;
-    for (const auto& p : make_plan(requests))
-      for (const auto& c : p.cases) {
-        CaseRecord rec = new_record(c);
+    // Without a context the entry's own sizes (a software renderer's).
+    const std::vector<Planned> plan = make_plan(registry_, requests, opt_, false);
+    for (const auto& u : plan_units(plan, opt_, opt_.shard))
+      for (size_t i = 0; i < u.group.cases.size(); ++i) {
+        if (u.group.shadow[i]) continue;
+        CaseRecord rec = new_record(u.group.cases[i], plan[u.planned]);
         rec.fail(Status::Unsupported, e.what());
-        write(*writer_, summary_rows(row_settings(p), rec));
+        write(*writer_, summary_rows(row_settings(plan[u.planned]), rec));
         ++cases;
       }
     std::fprintf(stderr, "oitbench: %s: %zu case(s) unsupported -> %s\n", e.what(), cases,
@@ -188,7 +156,8 @@ class Runner {
             {"cpu_model", cpu_model()},
             {"lp_num_threads", lp_num_threads()},
             {"env", recorded_env()},
-            {"preset", opt_.preset_name}};
+            {"preset", opt_.preset_name},
+            {"shard", opt_.shard.text()}};
   }
 
   RowSettings row_settings(const Planned& p) const {
@@ -196,9 +165,10 @@ class Runner {
             group_index_, use_gpu_timer_, sync_passes_};
   }
 
-  static CaseRecord new_record(const ParamSet& params) {
+  static CaseRecord new_record(const ParamSet& params, const Planned& p) {
     CaseRecord r;
     r.params = params;
+    r.key = case_key(p.exp->name(), p.res, params);
     r.variant = params.has("variant") ? params.get("variant") : "";
     return r;
   }
@@ -260,85 +230,124 @@ class Runner {
     return true;
   }
 
+  // An interleaved group in flight: its cases and what the phases below hand each other.
+  struct GroupRun {
+    const Planned& p;
+    const GroupPlan& group;
+    RowSettings settings;
+    std::vector<LiveCase> live;
+    PassTimer timer;
+    std::vector<double> last_ms, warm_scale, scale;  // the last warm-up's time, the warm-up's and the samples' scale
+    std::vector<bool> done;                          // a case whose interval reached the target stops
+    StopReason why = StopReason::Continue;
+    GroupRun(const Planned& plan, const GroupPlan& g, RowSettings s, bool queries, bool sync)
+        : p(plan),
+          group(g),
+          settings(std::move(s)),
+          live(g.cases.size()),
+          timer(queries, sync),
+          last_ms(live.size(), 0),
+          warm_scale(live.size(), 1.0),
+          scale(live.size(), 1.0),
+          done(live.size(), false) {}
+  };
+
   void run_group(const Planned& p, const GroupPlan& group) {
-    Experiment& exp = *p.exp;
-    RowSettings settings = row_settings(p);
-    const SamplingPolicy& policy = p.policy;
-    std::vector<LiveCase> live(group.cases.size());
-    for (size_t i = 0; i < live.size(); ++i) {
-      live[i].record = new_record(group.cases[i]);
-      if (!p.baseline.empty()) live[i].record.baseline = baseline_text(p.baseline);
-      watchdog_->set_current(exp.name() + " " + group.cases[i].describe());
-      prepare(exp, p.res, live[i]);
+    // Query results recorded always; the primary clock only where trusted.
+    GroupRun g(p, group, row_settings(p), gl_.has_timer_query(), sync_passes_);
+    prepare_group(g);
+    const GpuReading gpu_start = gpu_.read();  // the clocks around the timed work (empty without NVML)
+    warm_up(g);
+    size_samples(g);
+    timed_rounds(g);
+    ++group_index_;
+    if (signals_.stopped()) return;  // unfinished cases write nothing; finished rows are on disk
+    finish_group(g, gpu_start, gpu_.read());
+  }
+
+  void prepare_group(GroupRun& g) {
+    Experiment& exp = *g.p.exp;
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      g.live[i].record = new_record(g.group.cases[i], g.p);
+      if (!g.p.baseline.empty()) g.live[i].record.baseline = baseline_text(g.p.baseline);
+      watchdog_->set_current(exp.name() + " " + g.group.cases[i].describe());
+      prepare(exp, g.p.res, g.live[i]);
     }
+    for (size_t i = 0; i < g.live.size(); ++i)
+      if (g.group.baseline_of[i] >= 0)
+        g.live[i].record.baseline_record = &g.live[static_cast<size_t>(g.group.baseline_of[i])].record;
+  }
+
+  // Warm-up, interleaved across the group: A B C A B C ...; the last one sizes the samples.
+  // Scalable work warms up on one unit (one draw of occupancy's 64: the JIT, not 64 times the work),
+  // its time scaled to the nominal repetition for sizing; warmup_ms keeps what the one unit took.
+  void warm_up(GroupRun& g) {
+    const Planned& p = g.p;
+    auto& live = g.live;
     for (size_t i = 0; i < live.size(); ++i)
-      if (group.baseline_of[i] >= 0)
-        live[i].record.baseline_record = &live[static_cast<size_t>(group.baseline_of[i])].record;
-    PassTimer timer(gl_.has_timer_query(), sync_passes_);  // queries recorded always; primary only where trusted
-    const GpuReading gpu_start = gpu_.read();              // the clocks around the timed work (empty without NVML)
-    auto stop_now = [&] { return signals_.stopped(); };
-    // Warm-up, interleaved across the group: A B C A B C ...; the last one sizes the samples.
-    // Scalable work warms up on one unit (one draw of occupancy's 64: the JIT, not 64 times the work),
-    // its time scaled to the nominal repetition for sizing; warmup_ms keeps what the one unit took.
-    std::vector<double> last_ms(live.size(), 0), warm_scale(live.size(), 1.0);
-    for (size_t i = 0; i < live.size(); ++i)
-      if (live[i].active() && policy.max_sample_ms > 0)
+      if (live[i].active() && p.policy.max_sample_ms > 0)
         if (const int nominal = live[i].instance->nominal_units(); nominal > 1) {
           live[i].instance->set_units(1);
-          warm_scale[i] = nominal;
+          g.warm_scale[i] = nominal;
         }
-    const int steps = p.warmup + (policy.adaptive ? policy.max_reps : p.reps);
-    for (int r = -p.warmup; r < 0 && !stop_now(); ++r) {
+    for (int r = -p.warmup; r < 0 && !signals_.stopped(); ++r) {
       for (size_t i = 0; i < live.size(); ++i) {
         auto& c = live[i];
-        if (!c.active() || stop_now()) continue;
-        watchdog_->set_current(exp.name() + " " + c.record.params.describe());
+        if (!c.active() || signals_.stopped()) continue;
+        watchdog_->set_current(p.exp->name() + " " + c.record.params.describe());
         try {
           std::vector<PassSample> samples;
           double total = 0;
-          if (!run_sample(c, timer, 1, warm_scale[i], samples, total)) continue;
-          if (r == -p.warmup) c.record.warmup_ms = total / warm_scale[i];
-          last_ms[i] = total;
+          if (!run_sample(c, g.timer, 1, g.warm_scale[i], samples, total)) continue;
+          if (r == -p.warmup) c.record.warmup_ms = total / g.warm_scale[i];
+          g.last_ms[i] = total;
         } catch (const std::exception& e) {
           c.record.fail(Status::Error, std::string("run: ") + e.what());
         }
       }
       watchdog_->heartbeat();
-      progress_->report(exp.name(), cases_done_, live.size(), r + p.warmup + 1, steps);
+      progress_->report(p.exp->name(), cases_done_, live.size(), r + p.warmup + 1, steps(p));
     }
-    // Sample sizes: fewer units of scalable work where a repetition is long, more runs where it is short.
-    // The warm-up may have held the JIT: the first timed round checks the size again (below).
-    std::vector<double> scale(live.size(), 1.0);
-    for (size_t i = 0; i < live.size() && !stop_now(); ++i) {
-      auto& c = live[i];
+  }
+
+  static int steps(const Planned& p) { return p.warmup + (p.policy.adaptive ? p.policy.max_reps : p.reps); }
+
+  // Sample sizes: fewer units of scalable work where a repetition is long, more runs where it is short.
+  // The warm-up may have held the JIT: the first timed round checks the size again (check_sizes).
+  void size_samples(GroupRun& g) {
+    const SamplingPolicy& policy = g.p.policy;
+    for (size_t i = 0; i < g.live.size() && !signals_.stopped(); ++i) {
+      auto& c = g.live[i];
       if (!c.active()) continue;
       auto& rec = c.record;
       try {
         if (const int nominal = c.instance->nominal_units(); nominal > 0) {
-          rec.sample_units = units_per_run(last_ms[i], nominal, policy.min_sample_ms, policy.max_sample_ms);
+          rec.sample_units = units_per_run(g.last_ms[i], nominal, policy.min_sample_ms, policy.max_sample_ms);
           c.instance->set_units(rec.sample_units);
-          scale[i] = static_cast<double>(nominal) / rec.sample_units;
+          g.scale[i] = static_cast<double>(nominal) / rec.sample_units;
         }
-        const double rep_ms = last_ms[i] / scale[i];  // one run at the units it will do
+        const double rep_ms = g.last_ms[i] / g.scale[i];  // one run at the units it will do
         rec.sample_runs = runs_per_sample(rep_ms, policy.min_sample_ms);
       } catch (const std::exception& e) {
         rec.fail(Status::Error, std::string("run: ") + e.what());
       }
     }
-    // Timed repetitions, interleaved, until the stopping rule says the group has enough.
-    auto timed_start = Clock::now();  // restarted when a round is taken as warm-up (below)
-    StopReason why = StopReason::Continue;
-    // The first rounds check the sample sizes again: a round after a JIT-laden warm-up (or after a resize
-    // chosen from such a round) can still be slow, so each check sizes from the round just run, until a
-    // round needs no resize or kMaxSizeChecks rounds were taken as warm-up.
+  }
+
+  // Timed repetitions, interleaved, until the stopping rule says the group has enough. A case whose own
+  // interval reached the target stops (stop=target) while the others go on; a baseline goes on while a
+  // case it pairs with does (sampling.hpp: step_group).
+  // The first rounds check the sample sizes again: a round after a JIT-laden warm-up (or after a resize
+  // chosen from such a round) can still be slow, so each check sizes from the round just run, until a
+  // round needs no resize or kMaxSizeChecks rounds were taken as warm-up.
+  void timed_rounds(GroupRun& g) {
     constexpr int kMaxSizeChecks = 4;
+    auto& live = g.live;
+    auto timed_start = Clock::now();  // restarted when a round is taken as warm-up
     int size_checks = 0;
     bool checked_size = false;
     std::vector<Row> first_round_raw;  // a checked round's raw rows wait until its sizes are confirmed
-    // A case whose own interval reached the target stops (stop=target) while the others go on; a baseline
-    // goes on while a case it pairs with does (sampling.hpp: step_group).
-    std::vector<bool> done(live.size(), false);
-    for (int r = 0; !stop_now(); ++r) {
+    for (int r = 0; !signals_.stopped(); ++r) {
       std::vector<std::vector<double>> totals(live.size());
       bool any_active = false;
       for (size_t i = 0; i < live.size(); ++i)
@@ -347,62 +356,18 @@ class Runner {
           if (live[i].record.cpu.count("total")) totals[i] = live[i].record.cpu.at("total");
         }
       if (!any_active) break;
-      why = step_group(policy, totals, group.baseline_of, ms_since(timed_start) / 1000.0, done);
-      if (why != StopReason::Continue) break;
-      for (size_t i = 0; i < live.size(); ++i) {
-        auto& c = live[i];
-        if (!c.active() || done[i] || stop_now()) continue;
-        auto& rec = c.record;
-        watchdog_->set_current(exp.name() + " " + rec.params.describe());
-        try {
-          std::vector<PassSample> samples;
-          double total = 0;
-          if (!run_sample(c, timer, rec.sample_runs, scale[i], samples, total)) continue;
-          double gpu_total = rec.add_repetition(samples, total);
-          if (raw_writer_) {
-            auto rows = raw_rows(settings, rec, r, samples, total, gpu_total);
-            if (checked_size)
-              write(*raw_writer_, rows);
-            else
-              first_round_raw.insert(first_round_raw.end(), rows.begin(), rows.end());
-          }
-        } catch (const std::exception& e) {
-          rec.fail(Status::Error, std::string("run: ") + e.what());
-        }
-      }
+      g.why = step_group(g.p.policy, totals, g.group.baseline_of, ms_since(timed_start) / 1000.0, g.done);
+      if (g.why != StopReason::Continue) break;
+      timed_round(g, r, checked_size ? nullptr : &first_round_raw);
       if (!checked_size) {
-        // A sample shorter than half of --min-sample-ms was sized from a warm-up that held the JIT: size it
-        // from this round and take the round as one more warm-up, for every case of the group alike.
-        ++size_checks;
-        bool resized = false;
-        for (size_t i = 0; i < live.size(); ++i) {
-          auto& rec = live[i].record;
-          if (!live[i].active() || !rec.cpu.count("total") || rec.cpu.at("total").empty()) continue;
-          const double rep_ms = rec.cpu.at("total").back();  // per nominal repetition
-          if (const int nominal = live[i].instance->nominal_units(); nominal > 0) {
-            // Units chosen from a JIT-laden warm-up may be far too few: choose them again from this round.
-            const int units = units_per_run(rep_ms, nominal, policy.min_sample_ms, policy.max_sample_ms);
-            if (units > rec.sample_units * 3 / 2 || units * 3 / 2 < rec.sample_units) {
-              rec.sample_units = units;
-              live[i].instance->set_units(units);
-              scale[i] = static_cast<double>(nominal) / units;
-              rec.sample_runs = runs_per_sample(rep_ms / scale[i], policy.min_sample_ms);
-              resized = true;
-              continue;
-            }
-          }
-          const double sample_ms = rep_ms / scale[i] * rec.sample_runs;
-          if (sample_ms >= policy.min_sample_ms / 2) continue;
-          rec.sample_runs = runs_per_sample(sample_ms / rec.sample_runs, policy.min_sample_ms);
-          resized = true;
-        }
-        checked_size = !resized || size_checks >= kMaxSizeChecks;
+        const bool resized = check_sizes(g);
+        checked_size = !resized || ++size_checks >= kMaxSizeChecks;
         if (resized) {
           for (auto& c : live) {
             c.record.cpu.clear();
             c.record.gpu.clear();
           }
-          done.assign(live.size(), false);
+          g.done.assign(live.size(), false);
           first_round_raw.clear();
           timed_start = Clock::now();  // a round taken as warm-up is not timed work
           r = -1;                      // the next round is the first timed one again
@@ -411,44 +376,103 @@ class Runner {
         }
       }
       watchdog_->heartbeat();
-      progress_->report(exp.name(), cases_done_, live.size(), r + p.warmup + 1, steps);
+      progress_->report(g.p.exp->name(), cases_done_, live.size(), r + g.p.warmup + 1, steps(g.p));
     }
-    ++group_index_;
-    if (signals_.stopped()) return;  // unfinished cases write nothing; finished rows are on disk
-    const GpuReading gpu_end = gpu_.read();
-    RowSettings summary = settings;
+  }
+
+  // One timed round over the group's running cases; raw rows go to the file, or to `held` while the
+  // round's sizes are not confirmed.
+  void timed_round(GroupRun& g, int r, std::vector<Row>* held) {
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      auto& c = g.live[i];
+      if (!c.active() || g.done[i] || signals_.stopped()) continue;
+      auto& rec = c.record;
+      watchdog_->set_current(g.p.exp->name() + " " + rec.params.describe());
+      try {
+        std::vector<PassSample> samples;
+        double total = 0;
+        if (!run_sample(c, g.timer, rec.sample_runs, g.scale[i], samples, total)) continue;
+        double gpu_total = rec.add_repetition(samples, total);
+        if (raw_writer_) {
+          auto rows = raw_rows(g.settings, rec, r, samples, total, gpu_total);
+          if (held)
+            held->insert(held->end(), rows.begin(), rows.end());
+          else
+            write(*raw_writer_, rows);
+        }
+      } catch (const std::exception& e) {
+        rec.fail(Status::Error, std::string("run: ") + e.what());
+      }
+    }
+  }
+
+  // After a round whose sizes are not confirmed: a sample shorter than half of --min-sample-ms was sized
+  // from a warm-up that held the JIT; size it from this round. Returns whether any case was resized (the
+  // round is then one more warm-up, for every case of the group alike).
+  bool check_sizes(GroupRun& g) {
+    const SamplingPolicy& policy = g.p.policy;
+    bool resized = false;
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      auto& rec = g.live[i].record;
+      if (!g.live[i].active() || !rec.cpu.count("total") || rec.cpu.at("total").empty()) continue;
+      const double rep_ms = rec.cpu.at("total").back();  // per nominal repetition
+      if (const int nominal = g.live[i].instance->nominal_units(); nominal > 0) {
+        // Units chosen from a JIT-laden warm-up may be far too few: choose them again from this round.
+        const int units = units_per_run(rep_ms, nominal, policy.min_sample_ms, policy.max_sample_ms);
+        if (units > rec.sample_units * 3 / 2 || units * 3 / 2 < rec.sample_units) {
+          rec.sample_units = units;
+          g.live[i].instance->set_units(units);
+          g.scale[i] = static_cast<double>(nominal) / units;
+          rec.sample_runs = runs_per_sample(rep_ms / g.scale[i], policy.min_sample_ms);
+          resized = true;
+          continue;
+        }
+      }
+      const double sample_ms = rep_ms / g.scale[i] * rec.sample_runs;
+      if (sample_ms >= policy.min_sample_ms / 2) continue;
+      rec.sample_runs = runs_per_sample(sample_ms / rec.sample_runs, policy.min_sample_ms);
+      resized = true;
+    }
+    return resized;
+  }
+
+  // Validation, notes and rows, after every case of the group ran: a speedup needs its baseline's status.
+  void finish_group(GroupRun& g, const GpuReading& gpu_start, const GpuReading& gpu_end) {
+    RowSettings summary = g.settings;
     for (const auto& [k, v] : gpu_state_columns(gpu_start, gpu_end)) summary.run[k] = v;
     const std::string clock_note = clock_change_note(gpu_start, gpu_end);
-    for (size_t i = 0; i < live.size(); ++i) {
-      auto& c = live[i];
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      auto& c = g.live[i];
       auto& rec = c.record;
       if (c.instance) {
         for (const auto& [k, v] : c.instance->metrics()) rec.metrics[k] = v;
-        if (c.active()) {
-          try {
-            Validation v = c.instance->validate();
-            for (const auto& [k, val] : v.metrics) rec.metrics[k] = val;
-            if (v.valid)
-              rec.note = v.reason;
-            else
-              rec.fail(Status::Invalid, v.reason);
-          } catch (const std::exception& e) {
-            rec.fail(Status::Error, std::string("validate: ") + e.what());
-          }
-        }
+        if (c.active()) validate(c);
       }
       // The cases that ran while the clocks moved say so (those that never ran have nothing to qualify).
       if (!clock_note.empty() && (rec.status == Status::Ok || rec.status == Status::Invalid)) rec.add_note(clock_note);
       if (rec.status == Status::Ok && rec.cpu.count("total")) {
-        const StopReason case_why = done[i] ? StopReason::Target : why;
+        const StopReason case_why = g.done[i] ? StopReason::Target : g.why;
         rec.stop = stop_reason_name(case_why);
-        if (auto note = ci_note(policy, rec.cpu.at("total"), case_why); !note.empty()) rec.add_note(note);
+        if (auto note = ci_note(g.p.policy, rec.cpu.at("total"), case_why); !note.empty()) rec.add_note(note);
       }
     }
-    // Rows after every case of the group is validated: a speedup needs its baseline's status.
-    for (size_t i = 0; i < live.size(); ++i) {
-      if (!group.shadow[i]) finish_case(summary, live[i].record);
-      live[i].instance.reset();
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      if (!g.group.shadow[i]) finish_case(summary, g.live[i].record);
+      g.live[i].instance.reset();
+    }
+  }
+
+  static void validate(LiveCase& c) {
+    auto& rec = c.record;
+    try {
+      Validation v = c.instance->validate();
+      for (const auto& [k, val] : v.metrics) rec.metrics[k] = val;
+      if (v.valid)
+        rec.note = v.reason;
+      else
+        rec.fail(Status::Invalid, v.reason);
+    } catch (const std::exception& e) {
+      rec.fail(Status::Error, std::string("validate: ") + e.what());
     }
   }
 
@@ -515,7 +539,7 @@ class Runner {
       copied = copy_rows(out, *writer_, true) > 0;
     if (copied && raw_writer_) copy_rows(raw, *raw_writer_, false);
     if (!copied && outcome.kind != ChildOutcome::Kind::Stopped) {
-      CaseRecord rec = new_record(params);
+      CaseRecord rec = new_record(params, p);
       switch (outcome.kind) {
         case ChildOutcome::Kind::TimedOut:
           rec.fail(Status::Timeout, "killed by the watchdog after " + fmt_number(opt_.timeout_s, 3) + " s (--timeout)");
@@ -545,6 +569,7 @@ class Runner {
     for (size_t i = 1; i < rows.size(); ++i) {
       Row row;
       for (size_t j = 0; j < header.size() && j < rows[i].size(); ++j) row[header[j]] = rows[i][j];
+      row["shard"] = opt_.shard.text();  // the child ran one case of this shard
       into.write(row);
       if (count_cases && row["pass"] == "total") {
         for (Status s : kAllStatuses)
@@ -565,7 +590,6 @@ class Runner {
   // Declared after the context: destroyed first, while its GL objects can still be deleted.
   std::unique_ptr<SharedCache> shared_ = std::make_unique<SharedCache>();
   bool use_gpu_timer_ = false, sync_passes_ = true;
-  bool gl_info_known_ = false;
   std::unique_ptr<CsvWriter> writer_, raw_writer_;
   Row run_columns_;
   std::map<Status, int> counts_;

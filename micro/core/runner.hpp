@@ -11,6 +11,7 @@
 #include "core/registry.hpp"
 #include "core/sampling.hpp"
 #include "core/schema.hpp"
+#include "core/shard.hpp"
 
 namespace oitbench {
 
@@ -60,6 +61,7 @@ struct RunOptions {
   size_t max_cases = kMaxGridCases;  // --max-cases: the grid's bound, checked before anything is built
   bool progress = true;
   std::string preset_name;      // recorded in each row
+  ShardSpec shard;              // --shard: this shard's units only (core/plan.hpp); recorded in each row
   std::string shader_root;      // where shaders/ lives
   bool program_cache = true;    // reuse linked programs (glGetProgramBinary) across runs
   bool isolated_child = false;  // this process runs one case for a parent: no summary line

@@ -156,6 +156,10 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"gpu_power_start_w", T::Number, "W", "the board power draw (NVML) at the start of the case group", "timing"},
       {"gpu_power_end_w", T::Number, "W", "the board power draw at the end of the case group", "timing"},
       {"preset", T::Text, "", "the preset the row ran under, if any", "run"},
+      {"shard", T::Text, "",
+       "I/N: the row ran in shard I of N (--shard; the N shards' rows together are the whole grid, each case "
+       "once); empty: the whole grid in one run",
+       "run"},
       {"git_sha", T::Text, "", "the commit the binary was built from (-dirty when its sources differed)", "run"},
       {"timestamp_utc", T::Text, "", "when the row was written (ISO 8601, UTC)", "run"},
       {"hostname", T::Text, "", "machine name", "run"},
@@ -192,6 +196,7 @@ const std::vector<ColumnSpec>& raw_base_columns() {
       {"git_sha", T::Text, "", "the commit the binary was built from", "run"},
       {"timestamp_utc", T::Text, "", "when the row was written", "run"},
       {"preset", T::Text, "", "the preset the row ran under", "run"},
+      {"shard", T::Text, "", "I/N: the shard the row ran in (--shard); empty: unsharded", "run"},
   };
   return cols;
 }

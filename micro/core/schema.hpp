@@ -16,7 +16,8 @@ class Registry;
 // gpu_*_start/end), occupancy's measured_occupancy and measured_occupancy_note. 4: samples sized by
 // their statistics and paired speedups (ci_lo_ms, ci_hi_ms, ci_pct, target_ci_pct, stop, sample_runs,
 // sample_units, baseline, speedup, speedup_ci_lo/hi), the new oit metrics (node_buffers, ...).
-inline constexpr int kCsvSchema = 4;
+// 5: shard (--shard I/N).
+inline constexpr int kCsvSchema = 5;
 
 enum class Status { Ok, Invalid, Unsupported, Error, Timeout };
 inline constexpr Status kAllStatuses[] = {Status::Ok, Status::Invalid, Status::Unsupported, Status::Error,
