@@ -33,6 +33,9 @@ std::string join_effects(const std::vector<std::string>& effects) { return list_
 
 std::vector<std::string> select_effects(const SceneDesc& scene, const std::string& value) {
   if (value == "scene") return scene.effects;
+  if (value.empty() || value.front() == '+' || value.back() == '+' || value.find("++") != std::string::npos)
+    throw std::invalid_argument("effects=" + value + ": an empty effect name; valid effects: " +
+                                list_text(effect_names()) + " (joined by '+', e.g. opaque+transparency), or scene");
   std::vector<std::string> asked;
   std::stringstream ss(value);
   std::string name;

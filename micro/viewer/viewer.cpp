@@ -266,7 +266,9 @@ class Viewer {
         throw UsageError("view: give " + k + " as --" + k + ", not --set");
       chosen[k] = v.front();
     }
-    return OitSettings(registry, chosen);
+    OitSettings settings(registry, chosen);
+    settings.experiment().check_cases({settings.params()});  // an unknown effect: exit 2, as in run
+    return settings;
   }
 
   void say(const std::string& text, bool error = false) {

@@ -54,8 +54,8 @@ TEST(Faults, BadOptionValuesAreUsageErrorsNamingTheOption) {
     return a;
   };
   expect_usage_error(with({"--timeout", "nan"}), "--timeout");
-  expect_usage_error(with({"--timeout", "0"}), "expected seconds above 0");
-  expect_usage_error(with({"--timeout", "inf"}), "expected seconds above 0");
+  expect_usage_error(with({"--timeout", "0"}), "must be a number in (0, 604800] seconds");
+  expect_usage_error(with({"--timeout", "inf"}), "must be a number in (0, 604800] seconds");
   expect_usage_error(with({"--device", "-1"}), "--device");
   expect_usage_error(with({"--device", "99"}), "--device 99 applies to --backend egl-device only");
   expect_usage_error({"frob"}, "unknown subcommand 'frob'");
