@@ -1,8 +1,8 @@
 // The one check behind every numeric option: nan, inf, text and out-of-bounds values refused with
 // readable bounds; whole numbers rewritten as digits.
-#include <gtest/gtest.h>
-
 #include "app/number_option.hpp"
+
+#include <gtest/gtest.h>
 
 namespace oitbench::app {
 namespace {
