@@ -41,8 +41,8 @@ import signal
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
+from oitbench import cli  # noqa: E402
 
 DEFAULT_EXE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "build", "oitbench")
 MIN_EFFECT = 0.01
@@ -116,17 +116,17 @@ def describe(key):
 
 def medians(path, skip):
     """{case key: median_ms} of a round's ok rows."""
-    _, rows = oitcsv.read_csv(path)
+    _, rows = oitres.read_csv(path)
     out = {}
     for r in rows:
-        m = oitcsv.to_float(r.get("median_ms"))
-        if oitcsv.is_ok(r) and m is not None and m > 0:
+        m = oitres.to_float(r.get("median_ms"))
+        if oitres.is_ok(r) and m is not None and m > 0:
             out.setdefault(case_key(r, skip), m)
     return out
 
 
 def run_identity(path):
-    _, rows = oitcsv.read_csv(path)
+    _, rows = oitres.read_csv(path)
     r = rows[0] if rows else {}
     return (f"driver {r.get('driver', '?')} ({r.get('gl_renderer', '?')}), git {r.get('git_sha', '?')}, "
             f"LP_NUM_THREADS {r.get('lp_num_threads', '?')}, env {r.get('env') or '-'}")
@@ -137,13 +137,13 @@ class CaseResult:
         self.key = key
         n = min(len(a), len(b))
         self.ratios = [b[i] / a[i] for i in range(n)]
-        self.ratio = oitcsv.median(self.ratios) if self.ratios else float("nan")
+        self.ratio = oitres.median(self.ratios) if self.ratios else float("nan")
         self.ci = median_interval(self.ratios, confidence) if self.ratios else None
         # Neighbouring runs of one configuration: A(k) with A(k+1) where they are adjacent in A B B A A B ...
         logs = []
         for series in (a, b):
             logs += [math.log(series[i + 1] / series[i]) for i in range(len(series) - 1)]
-        self.noise = 100 * (math.exp(oitcsv.robust_sigma(mad(logs))) - 1) if len(logs) >= 2 else float("nan")
+        self.noise = 100 * (math.exp(oitres.robust_sigma(mad(logs))) - 1) if len(logs) >= 2 else float("nan")
         if self.ci is None:
             self.verdict = "too few round pairs for an interval"
         elif self.ci[0] > 1 + min_effect:
@@ -158,8 +158,8 @@ class CaseResult:
 def mad(values):
     if not values:
         return 0.0
-    m = oitcsv.median(values)
-    return oitcsv.median([abs(x - m) for x in values])
+    m = oitres.median(values)
+    return oitres.median([abs(x - m) for x in values])
 
 
 def compare_rounds(a_paths, b_paths, skip, min_effect):
@@ -247,14 +247,14 @@ def summarize(dirs):
         noise = [float(r["noise_pct"]) for r in rs if r["noise_pct"] not in ("", "nan")]
         lines.append(f"{case}: slower in {sum(r['verdict'] == 'SLOWER' for r in rs)}/{len(rs)}, faster in "
                      f"{sum(r['verdict'] == 'FASTER' for r in rs)}/{len(rs)}; ratio {min(ratios):.3f}-"
-                     f"{max(ratios):.3f} (median {oitcsv.median(ratios):.3f}); intervals within "
+                     f"{max(ratios):.3f} (median {oitres.median(ratios):.3f}); intervals within "
                      + (f"{min(los):.3f}-{max(his):.3f}" if los and his else "-")
-                     + (f"; neighbouring identical runs {oitcsv.median(noise):.1f}% apart (median)" if noise else ""))
+                     + (f"; neighbouring identical runs {oitres.median(noise):.1f}% apart (median)" if noise else ""))
         # Every trial's round pairs together: as one A/B run of that many rounds.
         pooled = [float(x) for r in rs for x in r.get("pair_ratios", "").split(";") if x]
         ci = median_interval(pooled, 1 - 0.05 / max(1, len(per_case))) if pooled else None
         if ci:
-            lines.append(f"  pooled over the trials: {len(pooled)} round pairs, ratio {oitcsv.median(pooled):.3f} "
+            lines.append(f"  pooled over the trials: {len(pooled)} round pairs, ratio {oitres.median(pooled):.3f} "
                          f"[{ci[0]:.3f}, {ci[1]:.3f}]")
     return "\n".join(lines)
 
@@ -346,7 +346,7 @@ def main(argv=None):
         labels = (configs["A"]["label"], configs["B"]["label"])
         print(f"A = {labels[0]}: {run_identity(present['A'][0])}")
         print(f"B = {labels[1]}: {run_identity(present['B'][0])}")
-    except oitcsv.ResultsError as e:
+    except oitres.ResultsError as e:
         print(f"ab.py: {e}", file=sys.stderr)
         return 2
     print(f"{n} round pair(s) A B B A ...; ratio = B / A per pair, its median and interval (at "
@@ -376,4 +376,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

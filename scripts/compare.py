@@ -34,8 +34,8 @@ import random
 import signal
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
+from oitbench import cli  # noqa: E402
 
 Z95 = 1.959964
 # Standard error of a sample median relative to the standard deviation of the samples (normal data).
@@ -57,14 +57,14 @@ class Case:
 
     def __init__(self, row, samples=None):
         self.row = row
-        self.median = oitcsv.to_float(row.get("median_ms"))
-        self.mad = oitcsv.to_float(row.get("mad_ms")) or 0.0
-        self.n = int(oitcsv.to_float(row.get("samples")) or 1)
+        self.median = oitres.to_float(row.get("median_ms"))
+        self.mad = oitres.to_float(row.get("mad_ms")) or 0.0
+        self.n = int(oitres.to_float(row.get("samples")) or 1)
         self.samples = samples or []
 
     def cv(self):
         """Robust coefficient of variation of single repetitions."""
-        return oitcsv.robust_sigma(self.mad) / self.median if self.median else 0.0
+        return oitres.robust_sigma(self.mad) / self.median if self.median else 0.0
 
     def log_se(self):
         """Standard error of log(median)."""
@@ -74,13 +74,13 @@ class Case:
         """Where this case's repetitions fall: min to max for a handful of them (a single stalled
         repetition among 3 leaves the MAD small but is real noise), else the 10-90% quantiles, or
         median +- 2 robust sigma when only the summary is known."""
-        lo = oitcsv.to_float(self.row.get("min_ms"))
-        hi = oitcsv.to_float(self.row.get("max_ms"))
+        lo = oitres.to_float(self.row.get("min_ms"))
+        hi = oitres.to_float(self.row.get("max_ms"))
         if len(self.samples) >= SMALL_N:
             s = sorted(self.samples)
             return s[int(0.1 * (len(s) - 1))], s[int(math.ceil(0.9 * (len(s) - 1)))]
         if self.n >= SMALL_N or lo is None or hi is None:
-            sigma = oitcsv.robust_sigma(self.mad)
+            sigma = oitres.robust_sigma(self.mad)
             return self.median - 2 * sigma, self.median + 2 * sigma
         return lo, hi
 
@@ -101,7 +101,7 @@ def case_key(row, params):
     for the RBS techniques, ...) is left out, so schema 1 files, which filled every parameter, join schema
     2 files, which leave those empty."""
     return (row["experiment"], row["variant"], row["pass"], row.get("width", ""), row.get("height", "")) + \
-        tuple(row.get(p, "") if oitcsv.applies(p, row) else "" for p in params)
+        tuple(row.get(p, "") if oitres.applies(p, row) else "" for p in params)
 
 
 def load_raw_samples(path, summary_rows, params_of):
@@ -109,10 +109,10 @@ def load_raw_samples(path, summary_rows, params_of):
     row belongs to a summary row when experiment, variant, pass, resolution (where the raw file has it) and
     every parameter the summary row names in `parameters` agree; a parameter the raw file fills but the case
     does not use is ignored, so summary and raw rows pair for every experiment."""
-    header, rows = oitcsv.read_csv(path)
-    if not oitcsv.is_raw_header(header):
-        raise oitcsv.ResultsError(f"{path}: not an oitbench --raw CSV (no rep/cpu_ms columns)")
-    raw_params = set(oitcsv.raw_param_columns(header))
+    header, rows = oitres.read_csv(path)
+    if not oitres.is_raw_header(header):
+        raise oitres.ResultsError(f"{path}: not an oitbench --raw CSV (no rep/cpu_ms columns)")
+    raw_params = set(oitres.raw_param_columns(header))
     has_size = "width" in header and "height" in header
     by_case = {}
     for r in rows:
@@ -126,7 +126,7 @@ def load_raw_samples(path, summary_rows, params_of):
                 continue
             if any(r.get(p, "") != s.get(p, "") for p in names):
                 continue
-            x = oitcsv.to_float(r.get("gpu_ms" if timer == "gpu" else "cpu_ms"))
+            x = oitres.to_float(r.get("gpu_ms" if timer == "gpu" else "cpu_ms"))
             if x is not None and x >= 0:
                 samples.setdefault(raw_key(s, params_of.get(s["experiment"], [])), []).append(x)
     return samples
@@ -150,8 +150,8 @@ def bootstrap_ratio_ci(a, b, iterations, rng):
     """Percentile 95% interval of median(b*) / median(a*) over resamples of both sets."""
     ratios = []
     for _ in range(iterations):
-        ma = oitcsv.median(rng.choices(a, k=len(a)))
-        mb = oitcsv.median(rng.choices(b, k=len(b)))
+        ma = oitres.median(rng.choices(a, k=len(a)))
+        mb = oitres.median(rng.choices(b, k=len(b)))
         if ma > 0:
             ratios.append(mb / ma)
     ratios.sort()
@@ -254,7 +254,7 @@ def compare(runs, raw_paths, args):
         cases = {}
         for row in run.rows:
             params = params_of[row["experiment"]]
-            if not oitcsv.is_ok(row) or oitcsv.to_float(row.get("median_ms")) is None:
+            if not oitres.is_ok(row) or oitres.to_float(row.get("median_ms")) is None:
                 continue
             key = case_key(row, params)
             if key in cases:
@@ -292,10 +292,10 @@ def repeat_bands(base, repeat_paths, params_of):
     code on the same machine moves this much between runs, so only a ratio beyond it can be the change."""
     logs = {}
     for path in repeat_paths:
-        run = oitcsv.Run.load(path)
+        run = oitres.Run.load(path)
         for row in run.rows:
-            m = oitcsv.to_float(row.get("median_ms"))
-            if not oitcsv.is_ok(row) or m is None or m <= 0 or row["experiment"] not in params_of:
+            m = oitres.to_float(row.get("median_ms"))
+            if not oitres.is_ok(row) or m is None or m <= 0 or row["experiment"] not in params_of:
                 continue
             b = base.get(case_key(row, params_of[row["experiment"]]))
             if b and b.median:
@@ -325,7 +325,7 @@ def print_report(runs, comparisons, missing, params_of, notes, args):
     header = f"{'case':<52} {'run':<14} {'base ms':>9} {'ms':>9} {'ratio':>7} {'95% CI':>17} {'noise':>7}  verdict"
     current = None
     constant = {}
-    for c in sorted(comparisons, key=lambda c: (c.key[0], [oitcsv.sort_key(v) for v in c.key[1:]], c.label)):
+    for c in sorted(comparisons, key=lambda c: (c.key[0], [oitres.sort_key(v) for v in c.key[1:]], c.label)):
         exp = c.key[0]
         if exp != current:
             current = exp
@@ -343,11 +343,11 @@ def print_report(runs, comparisons, missing, params_of, notes, args):
     for n in notes:
         print(f"note: {n}")
     for run in runs:
-        bad = [r for r in run.rows if not oitcsv.is_ok(r)]
+        bad = [r for r in run.rows if not oitres.is_ok(r)]
         for r in bad:
             params = params_of.get(r["experiment"], [])
-            print(f"not compared ({run.label}): {r['experiment']} {oitcsv.describe_case(r, params)}: "
-                  f"{oitcsv.status_of(r)} {r.get('reason', '')}".rstrip())
+            print(f"not compared ({run.label}): {r['experiment']} {oitres.describe_case(r, params)}: "
+                  f"{oitres.status_of(r)} {r.get('reason', '')}".rstrip())
     vs = f" against {runs[0].label}" + (f" ({len(runs) - 1} runs compared with it)" if len(runs) > 2 else "")
     extra = f"; {len(missing)} not in every run" if missing else ""
     print(f"\n{summary_text(comparisons, args.min_effect)}{vs}{extra}")
@@ -393,7 +393,7 @@ def plain_log_formatter():
 
 def key_order(key):
     """Cases in the order of their key fields: variant, pass, resolution, parameters."""
-    return [oitcsv.sort_key(v) for v in key[1:]]
+    return [oitres.sort_key(v) for v in key[1:]]
 
 
 def draw_figures(out_dir, runs, comparisons, params_of, args, order=key_order):
@@ -497,12 +497,12 @@ def main(argv=None):
         ap.error("--labels needs one label per run")
     raw_paths = args.raw or [None] * len(args.csv)
     try:
-        runs = [oitcsv.Run.load(p, r, lab) for p, r, lab in zip(args.csv, raw_paths, labels)]
+        runs = [oitres.Run.load(p, r, lab) for p, r, lab in zip(args.csv, raw_paths, labels)]
         if len({r.label for r in runs}) < len(runs):  # same file names in different folders
             for i, r in enumerate(runs):
                 r.label = f"{i + 1}:{r.label}"
         comparisons, missing, params_of, notes = compare(runs, raw_paths, args)
-    except oitcsv.ResultsError as e:
+    except oitres.ResultsError as e:
         print(f"compare.py: {e}", file=sys.stderr)
         return 2
     print_report(runs, comparisons, missing, params_of, notes, args)
@@ -516,4 +516,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

@@ -7,13 +7,12 @@ total's ratio to the first effect set's. Only valid (ok) rows; cases of a single
   scripts/effects_table.py results/effects/house-opaque-128.csv     # the Markdown table docs/effects.md holds
 """
 import argparse
-import os
 import sys
 from collections import defaultdict
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
+from oitbench import cli  # noqa: E402
 
 EFFECT_PASSES = ("shadow-sort", "shadow-map", "opaque")  # micro/oit/scene_passes.cpp: effect_pass_names()
 HEADER = ("| scene | view | technique | effects | fragments captured | hidden_fragments | "
@@ -29,7 +28,7 @@ def fmt(v, digits=3):
 def table(rows):
     cases = defaultdict(dict)  # (scene, view, technique) -> effects -> pass -> row
     for r in rows:
-        if r.get("experiment") != "oit" or not oitcsv.is_ok(r) or not r.get("effects"):
+        if r.get("experiment") != "oit" or not oitres.is_ok(r) or not r.get("effects"):
             continue
         label = r.get("technique", "")
         if r.get("nodes"):
@@ -47,15 +46,15 @@ def table(rows):
             total = passes.get("total")
             if total is None:
                 continue
-            t = oitcsv.to_float(total.get("median_ms"))
+            t = oitres.to_float(total.get("median_ms"))
             first_total = t if first_total is None else first_total
-            effect_ms = [oitcsv.to_float(passes[p]["median_ms"]) if p in passes else None for p in EFFECT_PASSES]
-            own = [oitcsv.to_float(r["median_ms"]) for p, r in passes.items() if p != "total" and p not in EFFECT_PASSES]
+            effect_ms = [oitres.to_float(passes[p]["median_ms"]) if p in passes else None for p in EFFECT_PASSES]
+            own = [oitres.to_float(r["median_ms"]) for p, r in passes.items() if p != "total" and p not in EFFECT_PASSES]
             own_ms = sum(own) if own else (t if not any(effect_ms) else None)
             ratio = t / first_total if t is not None and first_total else None
             lines.append("| " + " | ".join([
-                key[0], key[1], key[2], e, fmt(oitcsv.to_float(total.get("total_fragments"))),
-                fmt(oitcsv.to_float(total.get("hidden_fragments"))),
+                key[0], key[1], key[2], e, fmt(oitres.to_float(total.get("total_fragments"))),
+                fmt(oitres.to_float(total.get("hidden_fragments"))),
                 *[fmt(x) for x in effect_ms], fmt(own_ms), fmt(t), f"{ratio:.2f}x" if ratio else ""]) + " |")
     return "\n".join(lines) + "\n"
 
@@ -68,8 +67,8 @@ def main(argv=None):
     rows = []
     for path in args.csv:
         try:
-            rows += oitcsv.read_csv(path)[1]
-        except oitcsv.ResultsError as e:
+            rows += oitres.read_csv(path)[1]
+        except oitres.ResultsError as e:
             print(f"effects_table.py: {e}", file=sys.stderr)
             return 2
     out = table(rows)
@@ -81,4 +80,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

@@ -23,11 +23,11 @@ import signal
 import statistics
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
 import plot  # noqa: E402  (pareto_front, oit_label: the figure's front and labels, so the text agrees)
 import report  # noqa: E402  (collect: summary CSVs by header, NAME_raw.csv beside them)
 import tables  # noqa: E402  (load_paper, build_rows, fmt: the paper tables as the report shows them)
+from oitbench import cli  # noqa: E402
 
 DASH = tables.DASH
 EVEN_BAND = 1.10  # a time ratio within 1/1.10 .. 1.10 reads "about even": closer than this run can tell
@@ -61,7 +61,7 @@ def max_frags_used(row):
 
 
 def num(row, *names):
-    return oitcsv.to_float(field(row, *names)) if row is not None else None
+    return oitres.to_float(field(row, *names)) if row is not None else None
 
 
 def ms(row):
@@ -89,7 +89,7 @@ class Results:
     def __init__(self, results_dir, paper_dir):
         presets = os.path.join(results_dir, "presets")
         if not os.path.isdir(presets):
-            raise oitcsv.ResultsError(f"{results_dir}: no presets/ folder (scripts/reference_runs.sh writes one)")
+            raise oitres.ResultsError(f"{results_dir}: no presets/ folder (scripts/reference_runs.sh writes one)")
         inputs, _, _ = report.collect([presets], None, None)
         self.runs = {}
         for inp in inputs:
@@ -113,7 +113,7 @@ class Results:
         for r in run.rows_of(experiment):
             if pass_ is not None and r.get("pass") != pass_:
                 continue
-            if valid and not (oitcsv.is_ok(r) and ms(r) is not None):
+            if valid and not (oitres.is_ok(r) and ms(r) is not None):
                 continue
             if any(r.get(k, "") != str(v) for k, v in eq.items()):
                 continue
@@ -148,7 +148,7 @@ class Results:
                 continue
             if view is not None and r["view"].lower() != view.lower():
                 continue
-            return oitcsv.to_float(r["value"])
+            return oitres.to_float(r["value"])
         return None
 
 
@@ -252,7 +252,7 @@ def case_key(r):
 
 
 def sizes_of(rows, column):
-    return sorted({int(float(r[column])) for r in rows if oitcsv.to_float(r.get(column)) is not None})
+    return sorted({int(float(r[column])) for r in rows if oitres.to_float(r.get(column)) is not None})
 
 
 def missing(name):
@@ -289,7 +289,7 @@ def section_runs(f):
     rows = []
     for name, run in sorted(f.runs.items()):
         totals = [r for r in run.rows if r.get("pass") == "total"]
-        count = {s: sum(1 for r in totals if oitcsv.status_of(r) == s)
+        count = {s: sum(1 for r in totals if oitres.status_of(r) == s)
                  for s in ("ok", "invalid", "unsupported", "error", "timeout")}
         times = sorted(t for t in (stamp(r.get("timestamp_utc")) for r in run.rows) if t)
         took = ""
@@ -327,21 +327,21 @@ def section_not_ok(f):
     for name, run in sorted(f.runs.items()):
         groups = {}
         for exp in run.experiments():
-            params = [p for p in run.params(exp) if p not in oitcsv.FRAMEWORK_PARAMS]
+            params = [p for p in run.params(exp) if p not in oitres.FRAMEWORK_PARAMS]
             for r in run.rows_of(exp):
-                if r.get("pass") != "total" or oitcsv.is_ok(r):
+                if r.get("pass") != "total" or oitres.is_ok(r):
                     continue
-                key = (exp, oitcsv.status_of(r), normalised_reason(r.get("reason", "")))
+                key = (exp, oitres.status_of(r), normalised_reason(r.get("reason", "")))
                 groups.setdefault(key, (params, []))[1].append(r)
         for (exp, status, _), (params, group) in groups.items():
-            vary = oitcsv.varying(group, params)
+            vary = oitres.varying(group, params)
             # What the cases have in common that names them, then each case (or each varying value).
             same = [f"{p}={group[0][p]}" for p in IDENTIFYING if p in params and p not in vary and group[0].get(p)]
             head = " ".join(x for x in [group[0].get("variant", "")] + same if x)
             if len(group) <= 4:
                 each = "; ".join(" ".join(f"{p}={r[p]}" for p in vary if r.get(p)) for r in group)
             else:
-                each = "; ".join(f"{p} " + ", ".join(sorted({r[p] for r in group}, key=oitcsv.sort_key))
+                each = "; ".join(f"{p} " + ", ".join(sorted({r[p] for r in group}, key=oitres.sort_key))
                                  for p in vary)
             cases = ": ".join(x for x in (head, each) if x)
             first = (group[0].get("reason", "").strip().splitlines() or [""])[0]
@@ -366,7 +366,7 @@ def case_label(row, vary):
         if "detail" in vary:
             parts.append(f"detail={row.get('detail', '')}")
         return "oit " + " ".join(p for p in parts if p)
-    return f"{row.get('experiment', '')} " + oitcsv.describe_case(row, [p for p in vary if p != "max_frags"])
+    return f"{row.get('experiment', '')} " + oitres.describe_case(row, [p for p in vary if p != "max_frags"])
 
 
 def section_warmup(f):
@@ -378,8 +378,8 @@ def section_warmup(f):
     for name, run in sorted(f.runs.items()):
         cases = []
         for exp in run.experiments():
-            params = [p for p in run.params(exp) if p not in oitcsv.FRAMEWORK_PARAMS]
-            vary = oitcsv.varying(run.rows_of(exp), params)
+            params = [p for p in run.params(exp) if p not in oitres.FRAMEWORK_PARAMS]
+            vary = oitres.varying(run.rows_of(exp), params)
             cases += [(r, vary) for r in run.rows_of(exp) if r.get("pass") == "total"]
         out = [f"`{name}`"]
         for col in ("compile_ms", "warmup_ms"):
@@ -523,7 +523,7 @@ def section_sort(f):
         fastest = min(x for x in (loc, reg) if x is not None) if (loc or reg) else None
         best.append((ratio(fastest, base), v))
         body.append([v, f_ms(loc), f_ms(reg), f_x(ratio(loc, reg)), f_x(ratio(fastest, base))])
-    body.sort(key=lambda row: (oitcsv.to_float(row[4]) is None, oitcsv.to_float(row[4]) or 0.0))
+    body.sort(key=lambda row: (oitres.to_float(row[4]) is None, oitres.to_float(row[4]) or 0.0))
     lines += [f"Every sort at n = {top} (ms; {DASH}: not valid or no such form):", ""]
     lines += table(["variant", "local ms", "registers ms", "local / registers", "fastest form / insertion-v2"],
                    body)
@@ -560,7 +560,7 @@ def section_sort(f):
             lines.append(f"- `insert` with `{keys}` keys: early-out / no-early-out {span(rs)} over sizes "
                          f"{sz[0]}..{sz[-1]} ({f_x(rs[0])} at {sz[0]}, {f_x(rs[-1])} at {sz[-1]}): "
                          f"with the early out {verdict(rs, 'sizes')}.")
-    bad = f.rows(name, "sort", valid=False, where=lambda r: not oitcsv.is_ok(r) and oitcsv.status_of(r) == "invalid")
+    bad = f.rows(name, "sort", valid=False, where=lambda r: not oitres.is_ok(r) and oitres.status_of(r) == "invalid")
     for v in sorted({r["variant"] for r in bad}):
         mine = [r for r in bad if r["variant"] == v]
         grid = [r for r in f.rows(name, "sort", valid=False, variant=v)]
@@ -660,19 +660,19 @@ def section_spinlock(f):
         row = [n]
         for v in variants:
             r = next((x for x in spin if x["variant"] == v and x["layers"] == str(n)), None)
-            if r is not None and oitcsv.is_ok(r):
+            if r is not None and oitres.is_ok(r):
                 row.append(f"{f_ms(ms(r))} ({f_x(ratio(ms(r), naive))}x)")
             else:
-                row.append(oitcsv.status_of(r) if r else DASH)
+                row.append(oitres.status_of(r) if r else DASH)
         body.append(row)
     r0 = spin[0]
     lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}, each case in a child process "
               "under the watchdog): `total` ms, and the time over `naive` in brackets.", ""]
     lines += table(["layers"] + [f"`{v}`" for v in variants], body)
-    ok = [r for r in spin if oitcsv.is_ok(r)]
+    ok = [r for r in spin if oitres.is_ok(r)]
     capped = sum(num(r, "capped_updates") or 0 for r in ok)
     lost = sum(num(r, "lost_updates") or 0 for r in ok)
-    timeouts = sum(1 for r in spin if oitcsv.status_of(r) == "timeout")
+    timeouts = sum(1 for r in spin if oitres.status_of(r) == "timeout")
     loops = [ratio(f.median(name, "spinlock", variant=v, layers=n), f.median(name, "spinlock", variant="naive",
                                                                            layers=n))
              for v in ("loop", "helper-guard") for n in layers]
@@ -820,7 +820,7 @@ def section_targets(f):
                 mine = [b for b in body if b[0] == f"`{name}`" and b[4] == cap]
                 if mine:
                     lines.append(f"- `{name}`, {cap}: met in {sum(b[8] == 'yes' for b in mine)} of {len(mine)} "
-                                 f"cases (ratios {span([oitcsv.to_float(b[7]) for b in mine])}).")
+                                 f"cases (ratios {span([oitres.to_float(b[7]) for b in mine])}).")
         lines.append("")
     body = []
     for name in ("capture-storage", "oit-scale", "knowles2014"):
@@ -1057,13 +1057,13 @@ def section_resolve_speedups(f):
                             base_ms.setdefault(view, []).append(ms(r))
                         entry = sp.setdefault(label, {"row": r})
                         if label == "BASE-IS":
-                            entry[pass_], entry[pass_ + "_ms"] = 1.0, ms(r) if oitcsv.is_ok(r) else None
+                            entry[pass_], entry[pass_ + "_ms"] = 1.0, ms(r) if oitres.is_ok(r) else None
                             continue
-                        value = num(r, "speedup") if oitcsv.is_ok(r) else None
+                        value = num(r, "speedup") if oitres.is_ok(r) else None
                         if value is None and entry.get(pass_) is not None:
                             continue  # the same case as another pair's baseline: keep the paired row
                         entry["row"] = r
-                        entry[pass_ + "_ms"] = ms(r) if oitcsv.is_ok(r) else None
+                        entry[pass_ + "_ms"] = ms(r) if oitres.is_ok(r) else None
                         entry[pass_] = value
                         entry[pass_ + "_ci"] = (num(r, "speedup_ci_lo"), num(r, "speedup_ci_hi"))
                     # Candidates with the order check were divided by BASE-IS with it: chain to plain BASE-IS.
@@ -1078,12 +1078,12 @@ def section_resolve_speedups(f):
                     la, lb = resolve_label(a), resolve_label(b)
                     if la == "BASE-IS" and pass_ == "resolve" and ms(a) is not None:
                         base_ms.setdefault(view, []).append(ms(a))
-                    ok = oitcsv.is_ok(a) and oitcsv.is_ok(b) and ms(a) is not None and ms(b)
+                    ok = oitres.is_ok(a) and oitres.is_ok(b) and ms(a) is not None and ms(b)
                     chain = 1.0 if la == "BASE-IS" else sp.get(la, {}).get(pass_)
                     value = ms(a) / ms(b) * chain if ok and chain else None
                     entry = sp.setdefault(lb, {"row": b})
                     entry[pass_] = value
-                    entry[pass_ + "_ms"] = ms(b) if oitcsv.is_ok(b) else None
+                    entry[pass_ + "_ms"] = ms(b) if oitres.is_ok(b) else None
         body, best_rows = [], []
         for view in sorted(speed, key=lambda k: (scene_key(k[0]), view_key(k[1]))):
             cases = speed[view]
@@ -1181,7 +1181,7 @@ def section_scale(f):
     body = []
     for r in sorted(f.rows(name, "oit", valid=False), key=lambda r: (case_key(r), r.get("capture", ""),
                                                                      r["technique"])):
-        status = oitcsv.status_of(r)
+        status = oitres.status_of(r)
         body.append([r["scene"], r.get("detail", ""), r["view"], res(r), r.get("capture", ""), r["technique"],
                      max_frags_used(r), status, f_m(num(r, "total_fragments")), f_mb(num(r, "node_pool_bytes")),
                      f_m(num(r, "fragments_per_s")), f_ms(ms(r)) if status == "ok" else DASH])
@@ -1448,7 +1448,7 @@ SECTIONS = [section_runs, section_not_ok, section_occupancy, section_sort, secti
 def render(results_dir, paper_dir, shown_dir):
     f = Results(results_dir, paper_dir)
     if not f.runs:
-        raise oitcsv.ResultsError(f"{results_dir}/presets: no oitbench summary CSV")
+        raise oitres.ResultsError(f"{results_dir}/presets: no oitbench summary CSV")
     lines = [f"# Findings: the reference runs in `{shown_dir}`", "",
              "<!-- Generated by scripts/findings.py from presets/*.csv; do not edit: regenerate. -->", "",
              f"Generated by `scripts/findings.py {shown_dir}` from the CSVs in [presets/](presets/) and the "
@@ -1488,7 +1488,7 @@ def main(argv=None):
     shown = report.shown_path(args.results).replace(os.sep, "/")
     try:
         text = render(args.results, args.paper, shown)
-    except oitcsv.ResultsError as e:
+    except oitres.ResultsError as e:
         print(f"findings.py: {e}", file=sys.stderr)
         return 2
     if args.out:
@@ -1500,4 +1500,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

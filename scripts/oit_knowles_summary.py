@@ -6,10 +6,13 @@ usage: scripts/oit_knowles_summary.py RESULTS.csv [PAPER_TABLES_DIR]  (markdown 
 PAPER_TABLES_DIR holds knowles2014_table1_summary.csv and knowles2014_table3_speedups.csv (default: the
 repository's results/published).
 """
-import csv
+import argparse
 import statistics
 import sys
 from pathlib import Path
+
+from oitbench import cli
+from oitbench import results as oitres
 
 ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house"]
 # Our stand-ins for the paper's models (scenes/engine-grid.json, scenes/house.json): same view names.
@@ -22,16 +25,42 @@ def paper_name(t):
     return "CUDA-" + t[3:] if t.startswith("CS-") else t
 
 
-def main():
-    rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["status"] == "ok"]
-    paper_dir = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(__file__).resolve().parent.parent / "results" / "published"
-    t3, t1 = {}, {}
-    if (paper_dir / "knowles2014_table3_speedups.csv").exists():
-        for r in csv.DictReader(open(paper_dir / "knowles2014_table3_speedups.csv")):
-            t3[(r["scene"], r["view"].lower(), r["technique"], r["metric"].split("_")[0])] = float(r["value"])
-    if (paper_dir / "knowles2014_table1_summary.csv").exists():
-        for r in csv.DictReader(open(paper_dir / "knowles2014_table1_summary.csv")):
-            t1[(r["technique"], r["metric"])] = float(r["value"])
+def paper_table(path, key):
+    """{key(row): value} of one paper table, or {} when the file is not there."""
+    if not path.exists():
+        return {}
+    header, rows = oitres.read_csv(str(path))
+    missing = [c for c in ("technique", "metric", "value") if c not in header]
+    if missing:
+        raise oitres.ResultsError(f"{path}:1: not a paper table (no column {', '.join(missing)})")
+    table = {}
+    for line, r in enumerate(rows, 2):
+        value = oitres.to_float(r["value"])
+        if value is None:
+            raise oitres.ResultsError(f"{path}:{line}: value '{r['value']}' is not a number")
+        table[key(r)] = value
+    return table
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("csv", help="an `oitbench run --preset knowles2014` summary CSV")
+    ap.add_argument("paper_dir", nargs="?", help="the paper tables' folder (default: results/published)")
+    args = ap.parse_args(argv)
+    run = oitres.Run.load(args.csv)
+    missing = [c for c in ("scene", "view", "technique") if c not in run.header]
+    if missing:
+        raise oitres.ResultsError(f"{args.csv}:1: no oit rows to summarize (no column {', '.join(missing)})")
+    if not run.rows_of("oit"):
+        raise oitres.ResultsError(f"{args.csv}: no oit rows to summarize (run `oitbench run --preset knowles2014`)")
+    rows = [r for r in run.rows_of("oit") if r["status"] == "ok" and oitres.to_float(r["median_ms"]) is not None]
+    paper_dir = Path(args.paper_dir) if args.paper_dir else \
+        Path(__file__).resolve().parent.parent / "results" / "published"
+    if not paper_dir.is_dir():
+        raise oitres.ResultsError(f"{paper_dir}: no such folder (PAPER_TABLES_DIR)")
+    t3 = paper_table(paper_dir / "knowles2014_table3_speedups.csv",
+                     lambda r: (r.get("scene"), r.get("view", "").lower(), r["technique"], r["metric"].split("_")[0]))
+    t1 = paper_table(paper_dir / "knowles2014_table1_summary.csv", lambda r: (r["technique"], r["metric"]))
     res = {(r["scene"], r["view"], r["technique"], r["pass"]): r for r in rows}
     views = sorted({(r["scene"], r["view"]) for r in rows},
                    key=lambda sv: (ORDER.index(sv[0]) if sv[0] in ORDER else 9, sv[1]))
@@ -74,9 +103,11 @@ def main():
     for scene, view in views:
         r = res.get((scene, view, "BASE-IS", "total"))
         if r:
-            print(f"| {scene} | {view} | {r['total_fragments']} | {r['peak_depth']} | {r.get('max_frags_used') or r['max_frags']} "
-                  f"| {float(r['fragments_per_s']) / 1e6:.1f} M | {r.get('node_pool_bytes', '')} |")
+            rate = oitres.to_float(r.get("fragments_per_s"))
+            print(f"| {scene} | {view} | {r.get('total_fragments', '')} | {r.get('peak_depth', '')} "
+                  f"| {r.get('max_frags_used') or r.get('max_frags', '')} "
+                  f"| {f'{rate / 1e6:.1f} M' if rate is not None else '-'} | {r.get('node_pool_bytes', '')} |")
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(cli.run(main))

@@ -20,7 +20,6 @@ import signal
 import sys
 import zlib
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 import matplotlib  # noqa: E402
@@ -30,7 +29,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.patches  # noqa: E402
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator  # noqa: E402
 
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
+from oitbench import cli  # noqa: E402
 
 PLOTTERS = {}
 MAX_NOTE_LINES = 8
@@ -87,7 +87,7 @@ def axis_label(param):
     return f"{param} ({unit})" if unit else param
 
 
-PARAM_SPECS = {c["name"]: c for c in oitcsv.SCHEMA["summary_columns"] if c["role"] == "parameter"}
+PARAM_SPECS = {c["name"]: c for c in oitres.SCHEMA["summary_columns"] if c["role"] == "parameter"}
 
 
 def plotter(experiment):
@@ -109,13 +109,13 @@ class ExperimentData:
         self.experiment = experiment
         rows = run.rows_of(experiment)
         self.drawn = set()
-        valid = [dict(r, _row=i, _drawn=self.drawn) for i, r in enumerate(rows) if oitcsv.is_ok(r)]
+        valid = [dict(r, _row=i, _drawn=self.drawn) for i, r in enumerate(rows) if oitres.is_ok(r)]
         self.valid = valid
-        self.ok = [r for r in valid if oitcsv.to_float(r.get("median_ms")) is not None]
+        self.ok = [r for r in valid if oitres.to_float(r.get("median_ms")) is not None]
         self.skipped = {}  # reason -> rows
-        self.skip([r for r in valid if oitcsv.to_float(r.get("median_ms")) is None], "valid but no median_ms")
-        self.invalid = [r for r in rows if not oitcsv.is_ok(r)]
-        self.params = [p for p in run.params(experiment) if p not in oitcsv.FRAMEWORK_PARAMS]
+        self.skip([r for r in valid if oitres.to_float(r.get("median_ms")) is None], "valid but no median_ms")
+        self.invalid = [r for r in rows if not oitres.is_ok(r)]
+        self.params = [p for p in run.params(experiment) if p not in oitres.FRAMEWORK_PARAMS]
         self.metrics = run.metrics(experiment)
         self.passes = sorted({r["pass"] for r in self.ok}, key=lambda p: (p == "total", p))
 
@@ -128,14 +128,14 @@ class ExperimentData:
         return [r for r in self.ok if r["pass"] == "total"]
 
     def varying_params(self, rows=None):
-        return oitcsv.varying(rows if rows is not None else self.ok, self.params)
+        return oitres.varying(rows if rows is not None else self.ok, self.params)
 
     def first_param(self, candidates, numeric=False, rows=None):
         """The first of `candidates` that this experiment has and varies (numeric when asked)."""
         rows = rows if rows is not None else self.ok
         for c in candidates:
             if c in self.params and c in self.varying_params(rows):
-                if not numeric or oitcsv.numeric_column(rows, c):
+                if not numeric or oitres.numeric_column(rows, c):
                     return c
         return None
 
@@ -144,7 +144,7 @@ class ExperimentData:
         rows = rows if rows is not None else self.ok
         best, best_n = None, 1
         for p in self.varying_params(rows):
-            if p in exclude or not oitcsv.numeric_column(rows, p):
+            if p in exclude or not oitres.numeric_column(rows, p):
                 continue
             n = len({r[p] for r in rows})
             if n > best_n:
@@ -178,7 +178,7 @@ def mark(rows):
 
 
 def value(row, column="median_ms"):
-    return oitcsv.to_float(row.get(column))
+    return oitres.to_float(row.get(column))
 
 
 def resolution(data):
@@ -207,7 +207,7 @@ def group_rows(rows, columns):
     groups = {}
     for r in rows:
         groups.setdefault(tuple(r.get(c, "") for c in columns), []).append(r)
-    return dict(sorted(groups.items(), key=lambda kv: [oitcsv.sort_key(v) for v in kv[0]]))
+    return dict(sorted(groups.items(), key=lambda kv: [oitres.sort_key(v) for v in kv[0]]))
 
 
 def case_id(row, params):
@@ -232,7 +232,7 @@ def case_labels(rows, params, base, skip=()):
             if len(by_label[labels[cid]]) > 1 and r.get(p, "") != "":
                 labels[cid] += f" {p}={r[p]}"
     seen = {}
-    for cid in sorted(labels, key=lambda c: [oitcsv.sort_key(str(v)) for v in c]):
+    for cid in sorted(labels, key=lambda c: [oitres.sort_key(str(v)) for v in c]):
         n = seen[labels[cid]] = seen.get(labels[cid], 0) + 1
         if n > 1:
             labels[cid] += f" #{n}"
@@ -314,9 +314,9 @@ def draw_lines(ax, rows, x, label_columns, per=1.0, per_column=None, column="med
         i = styles.index(key) if styles and key in styles else i
         pts, used = [], []
         for r in grp:
-            xv, y = oitcsv.to_float(r.get(x)), value(r, column)
+            xv, y = oitres.to_float(r.get(x)), value(r, column)
             mad = (value(r, mad_column) or 0.0) if mad_column else 0.0
-            div = (oitcsv.to_float(r.get(per_column)) if per_column else per) or 1.0
+            div = (oitres.to_float(r.get(per_column)) if per_column else per) or 1.0
             if xv is not None and y is not None:
                 pts.append((xv, y / div, mad / div))
                 used.append(r)
@@ -507,12 +507,12 @@ def plot_occupancy(data):
     ax.grid(True, which="both", alpha=0.3)
     annotate_unroll_cliff(ax, data, rows, label_columns)
 
-    occ = [(oitcsv.to_float(r.get("size")), oitcsv.to_float(r.get("predicted_occupancy")))
-           for r in rows if oitcsv.to_float(r.get("predicted_occupancy")) is not None]
+    occ = [(oitres.to_float(r.get("size")), oitres.to_float(r.get("predicted_occupancy")))
+           for r in rows if oitres.to_float(r.get("predicted_occupancy")) is not None]
     # Measured where the driver could (GL_NV_shader_thread_group): one marker per variant and size.
-    measured = sorted({(r.get("variant", ""), oitcsv.to_float(r.get("size")),
-                        oitcsv.to_float(r.get("measured_occupancy")))
-                       for r in rows if oitcsv.to_float(r.get("measured_occupancy")) is not None})
+    measured = sorted({(r.get("variant", ""), oitres.to_float(r.get("size")),
+                        oitres.to_float(r.get("measured_occupancy")))
+                       for r in rows if oitres.to_float(r.get("measured_occupancy")) is not None})
     if occ or measured:
         occ = sorted(set(occ))
         ax2 = ax.twinx()
@@ -541,10 +541,10 @@ def annotate_unroll_cliff(ax, data, rows, label_columns):
     """Marks the biggest jump between SIZE 32 and 33: where llvmpipe's NIR stops unrolling loops."""
     best = None
     for key, grp in group_rows(rows, label_columns).items():
-        by_size = {oitcsv.to_float(r["size"]): r for r in grp}
+        by_size = {oitres.to_float(r["size"]): r for r in grp}
         if 32 in by_size and 33 in by_size:
-            t32 = value(by_size[32]) / (oitcsv.to_float(by_size[32].get("draws")) or 1)
-            t33 = value(by_size[33]) / (oitcsv.to_float(by_size[33].get("draws")) or 1)
+            t32 = value(by_size[32]) / (oitres.to_float(by_size[32].get("draws")) or 1)
+            t33 = value(by_size[33]) / (oitres.to_float(by_size[33].get("draws")) or 1)
             if t32 > 0 and (best is None or t33 / t32 > best[0]):
                 best = (t33 / t32, t33, group_label(grp[0], label_columns))
     if best is None or best[0] < 2:
@@ -628,7 +628,7 @@ def oit_effects_label(row, with_effects):
     if with_effects and row.get("effects"):
         label += f"\n[{row['effects']}]"
         if row.get("total_fragments"):
-            label += f" {oitcsv.to_float(row['total_fragments']):,.0f} frags"
+            label += f" {oitres.to_float(row['total_fragments']):,.0f} frags"
     return label
 
 
@@ -642,14 +642,14 @@ def format_cost(ax, rows, title):
     """What precision costs: each case a point at its time and its error against the truth (the geometric
     reference's truth_rmse where the scene is analytic, else rmse against the captured fragments), the
     point's area and label giving its fragment storage (node_pool_bytes)."""
-    column = "truth_rmse" if any(oitcsv.to_float(r.get("truth_rmse")) is not None for r in rows) else "rmse"
+    column = "truth_rmse" if any(oitres.to_float(r.get("truth_rmse")) is not None for r in rows) else "rmse"
     floor = 1e-9
     colors = {"rgba8": "tab:blue", "rgba16f": "tab:orange", "rgba32f": "tab:green"}
     for r in rows:
-        t, e = value(r), oitcsv.to_float(r.get(column))
+        t, e = value(r), oitres.to_float(r.get(column))
         if t is None or e is None:
             continue
-        mib = (oitcsv.to_float(r.get("node_pool_bytes")) or 0.0) / 2**20
+        mib = (oitres.to_float(r.get("node_pool_bytes")) or 0.0) / 2**20
         ax.scatter(t, max(e, floor), s=20 + 30 * mib ** 0.5, color=colors.get(r.get("frag_colour"), "tab:gray"),
                    marker="o" if r.get("frag_depth") != "view" else "s", alpha=0.8, zorder=3)
         ax.annotate(f"{oit_label(r)} {mib:.2f} MiB", (t, max(e, floor)), fontsize=7, xytext=(3, 2),
@@ -677,7 +677,7 @@ def effects_short(effects):
 
 
 def fmt_count(v):
-    v = oitcsv.to_float(v)
+    v = oitres.to_float(v)
     if v is None:
         return ""
     return f"{v / 1e6:.1f}M" if v >= 1e6 else f"{v / 1e3:.0f}k" if v >= 1e4 else f"{v:.0f}"
@@ -1028,8 +1028,8 @@ def fastest_table(runs):
     (scene, view, resolution), and per pass (resolve, total) the cases in order of their median ms."""
     out = []
     for run in runs:
-        rows = [r for r in run.rows_of("oit") if oitcsv.is_ok(r) and value(r) is not None]
-        params = [p for p in run.params("oit") if p not in oitcsv.FRAMEWORK_PARAMS]
+        rows = [r for r in run.rows_of("oit") if oitres.is_ok(r) and value(r) is not None]
+        params = [p for p in run.params("oit") if p not in oitres.FRAMEWORK_PARAMS]
         key_cols = ["scene", "view", "width", "height"]
         totals = [r for r in rows if r["pass"] == "total" and is_exact(r)]
         own = [p for p in params if p not in key_cols]
@@ -1119,7 +1119,7 @@ def invalid_lines(data):
     params = data.params
     seen, lines = set(), []
     for r in data.invalid:
-        text = f"{oitcsv.describe_case(r, params)}: {oitcsv.status_of(r)}" + (
+        text = f"{oitres.describe_case(r, params)}: {oitres.status_of(r)}" + (
             f" ({r['reason']})" if r.get("reason") else "")
         if text not in seen:
             seen.add(text)
@@ -1132,7 +1132,7 @@ def not_drawn_lines(data):
     lines = []
     for reason, rows in data.not_drawn():
         for r in rows:
-            text = f"{oitcsv.describe_case(r, data.params)}: valid, not drawn ({reason})"
+            text = f"{oitres.describe_case(r, data.params)}: valid, not drawn ({reason})"
             if text not in lines:
                 lines.append(text)
     return lines
@@ -1224,8 +1224,8 @@ def main(argv=None):
 
     try:
         raws = args.raw + [None] * (len(args.csv) - len(args.raw))
-        runs = [oitcsv.Run.load(p, r) for p, r in zip(args.csv, raws)]
-    except oitcsv.ResultsError as e:
+        runs = [oitres.Run.load(p, r) for p, r in zip(args.csv, raws)]
+    except oitres.ResultsError as e:
         print(f"plot.py: {e}", file=sys.stderr)
         return 2
     unique_labels(runs)
@@ -1261,4 +1261,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

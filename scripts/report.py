@@ -7,7 +7,7 @@ between two results folders (two drivers, machines or commits).
     scripts/report.py RESULTS_DIR -o DIR [--paper PAPER_DIR] [--images IMAGES_DIR]
     scripts/report.py --compare A_DIR B_DIR -o DIR [--labels A,B] [--min-effect 1.5]
 
-A folder argument stands for every summary CSV below it, found by its header (oitcsv.is_summary_header);
+A folder argument stands for every summary CSV below it, found by its header (oitres.is_summary_header);
 --raw files are left out (a NAME_raw.csv beside NAME.csv makes NAME's parameter columns exact), and so are
 the output folder, the images folder and any folder holding a page this script wrote. DIR gets
 index.html, figures/ (plot.py's figures, PNG and SVG) and images/ (copies of the rendered PNGs); every
@@ -38,15 +38,15 @@ import sys
 import time
 import urllib.parse
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import ab  # noqa: E402
 import compare  # noqa: E402
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
 import plot  # noqa: E402
 import tables  # noqa: E402
+from oitbench import cli  # noqa: E402
 
 GENERATOR = "oitbench scripts/report.py"
-STATUSES = oitcsv.STATUSES
+STATUSES = oitres.STATUSES
 COMPARE_META = "oitbench-compare"  # <meta name=COMPARE_META content="B against A"> marks a comparison page
 # Metadata shown per run, in this order: (column, label).
 META_COLUMNS = [("gl_renderer", "GL_RENDERER"), ("gl_vendor", "GL_VENDOR"), ("gl_version", "GL_VERSION"),
@@ -132,20 +132,23 @@ def collect(paths, out_dir, images_dir, pages=None):
         elif os.path.exists(p):
             found.append((p, True))
         else:
-            raise oitcsv.ResultsError(f"{p}: no such file or folder")
+            raise oitres.ResultsError(f"{p}: no such file or folder")
     base = os.path.commonpath([os.path.abspath(d) for d in dirs] +
                               [os.path.dirname(os.path.abspath(p)) for p, named in found if named] or ["."])
     headers = {}
     for p, _ in found:
-        headers[p] = oitcsv.read_csv(p)
+        headers[p] = oitres.read_csv(p)
     inputs, seen = [], set()
     for p, named in found:
         header, rows = headers[p]
         rel = os.path.relpath(os.path.abspath(p), base)
-        if not oitcsv.is_summary_header(header):
+        try:
+            oitres.check_summary_header(p, header)
+        except oitres.ResultsError as e:
             if named:
-                oitcsv.Run.load(p)  # raises the scripts' usual message (a --raw file, or not oitbench's)
-            why = "raw repetitions (--raw)" if oitcsv.is_raw_header(header) else "not an oitbench summary CSV"
+                raise  # the scripts' usual message (a --raw file, or not oitbench's)
+            why = "raw repetitions (--raw)" if oitres.is_raw_header(header) else "not an oitbench summary CSV" + (
+                str(e).split("summary CSV", 1)[1] if oitres.is_summary_header(header) else "")
             skipped.append((rel, why))
             continue
         if os.path.realpath(p) in seen:
@@ -154,13 +157,13 @@ def collect(paths, out_dir, images_dir, pages=None):
         # NAME_raw.csv beside NAME.csv, when it is a raw file, makes NAME's parameter columns exact.
         sibling = p[:-len(".csv")] + "_raw.csv" if p.endswith(".csv") else None
         raw_header = headers[sibling][0] if sibling in headers else (
-            oitcsv.read_csv(sibling)[0] if sibling and os.path.isfile(sibling) else [])
-        raw_params = oitcsv.raw_param_columns(raw_header) if oitcsv.is_raw_header(raw_header) else None
+            oitres.read_csv(sibling)[0] if sibling and os.path.isfile(sibling) else [])
+        raw_params = oitres.raw_param_columns(raw_header) if oitres.is_raw_header(raw_header) else None
         label = rel[:-len(".csv")] if rel.endswith(".csv") else rel
-        inputs.append(Input(oitcsv.Run(p, header, rows, raw_params, label), rel))
+        inputs.append(Input(oitres.Run(p, header, rows, raw_params, label), rel))
     if not inputs:
         where = ", ".join(paths)
-        raise oitcsv.ResultsError(f"{where}: no oitbench summary CSV found (written by `oitbench run --out`)")
+        raise oitres.ResultsError(f"{where}: no oitbench summary CSV found (written by `oitbench run --out`)")
     return inputs, skipped, base
 
 
@@ -183,11 +186,11 @@ def prepare_out_dir(out_dir):
     WRITTEN_LIST) are removed first; anything else in the folder is left as it is. Returns the time the
     new page starts writing (write_file_list lists what is written after it)."""
     if os.path.exists(out_dir) and not os.path.isdir(out_dir):
-        raise oitcsv.ResultsError(f"{out_dir}: is a file, not a folder; give -o a new or empty folder "
+        raise oitres.ResultsError(f"{out_dir}: is a file, not a folder; give -o a new or empty folder "
                                   "(report.py never writes over a file)")
     if os.path.isdir(out_dir) and os.listdir(out_dir):
         if generated_page(out_dir) is None:
-            raise oitcsv.ResultsError(f"{out_dir}: not empty and not a previous report; give a new or empty "
+            raise oitres.ResultsError(f"{out_dir}: not empty and not a previous report; give a new or empty "
                                       "folder with -o")
         remove_previous_page(out_dir)
     os.makedirs(out_dir, exist_ok=True)
@@ -257,7 +260,7 @@ class Facts:
         for exp in run.experiments():
             params = run.params(exp)
             # A failed case is named by what varies in its experiment here (the rest is the same for all).
-            shown = oitcsv.varying(run.rows_of(exp), params) or params
+            shown = oitres.varying(run.rows_of(exp), params) or params
             for r in run.rows_of(exp):
                 cases.setdefault(case_key(r, params), []).append((r, shown))
         self.experiments = collections.Counter()
@@ -266,15 +269,15 @@ class Facts:
         self.notes = collections.Counter()  # reasons written on valid rows (timer-disagreement, ...)
         for key, members in cases.items():
             total = next((r for r, _ in members if r.get("pass") == "total"), None)
-            failing = [r for r, _ in members if not oitcsv.is_ok(r)]
-            row = total if total is not None and not oitcsv.is_ok(total) else (failing[0] if failing else None)
-            status = oitcsv.status_of(row) if row is not None else "ok"
+            failing = [r for r, _ in members if not oitres.is_ok(r)]
+            row = total if total is not None and not oitres.is_ok(total) else (failing[0] if failing else None)
+            status = oitres.status_of(row) if row is not None else "ok"
             self.experiments[key[0]] += 1
             self.status[status] += 1
             if row is not None:
                 reason = row.get("reason") or next((r.get("reason") for r in failing if r.get("reason")), "")
                 params = members[0][1]
-                self.failed.append((key[0], oitcsv.describe_case(dict(row, **{"pass": "total"}), params),
+                self.failed.append((key[0], oitres.describe_case(dict(row, **{"pass": "total"}), params),
                                     status, reason))
             else:
                 for r, _ in members:
@@ -769,7 +772,7 @@ def tables_section(page, inputs, paper_dir, shown_paper_dir, out_dir=None, failu
         return 0
     try:
         paper_rows = tables.load_paper(paper_dir)
-    except oitcsv.ResultsError as e:
+    except oitres.ResultsError as e:
         page.add(f'<p class="note">The papers\' tables could not be read: {esc(e)}</p>')
         return 0
     page.add(f"<p class='muted'>Paper tables from <code>{esc(shown_paper_dir)}</code>.</p>")
@@ -855,21 +858,21 @@ def render_caption(csv_path):
     if not os.path.isfile(csv_path):
         return ""
     try:
-        header, rows = oitcsv.read_csv(csv_path)
-    except oitcsv.ResultsError:
+        header, rows = oitres.read_csv(csv_path)
+    except oitres.ResultsError:
         return ""
-    if not rows or not oitcsv.is_summary_header(header):
+    if not rows or not oitres.is_summary_header(header):
         return ""
     row = next((r for r in rows if r.get("pass") == "total"), rows[0])
     what = row.get("technique") or row.get("variant") or "?"
     where = " ".join(x for x in (row.get("scene"), row.get("view")) if x)
     parts = [f"{esc(what)}" + (f" on {esc(where)}" if where else "") +
              (f", {esc(row['width'])}x{esc(row['height'])}" if row.get("width") else "") + ":",
-             status_badges({oitcsv.status_of(row): 1}, always=False)]
+             status_badges({oitres.status_of(row): 1}, always=False)]
     facts = []
     for col, label, unit in (("median_ms", "total", " ms"), ("max_abs_error", "max error", ""),
                              ("rmse", "RMSE", ""), ("peak_depth", "peak depth", "")):
-        x = oitcsv.to_float(row.get(col))
+        x = oitres.to_float(row.get(col))
         if x is not None:
             facts.append(f"{label} {tables.fmt(x, 4) if unit else f'{x:.3g}'}{unit}")
     if row.get("reason"):
@@ -923,9 +926,9 @@ class Side:
     def __init__(self, path):
         self.path = path
         if not os.path.exists(path):
-            raise oitcsv.ResultsError(f"{path}: no such folder")
+            raise oitres.ResultsError(f"{path}: no such folder")
         if not os.path.isdir(path):
-            raise oitcsv.ResultsError(f"{path}: not a folder; --compare takes two results folders, each with "
+            raise oitres.ResultsError(f"{path}: not a folder; --compare takes two results folders, each with "
                                       "presets/NAME.csv (and NAME_raw.csv), as scripts/reference_runs.sh writes them")
         sub = os.path.join(path, "presets")
         self.folder = sub if os.path.isdir(sub) else path
@@ -934,23 +937,24 @@ class Side:
             p = os.path.join(self.folder, f)
             if not f.endswith(".csv") or not os.path.isfile(p):
                 continue
-            header = oitcsv.read_header(p)
-            if oitcsv.is_summary_header(header):
+            header = oitres.read_header(p)
+            if oitres.is_summary_header(header):
                 summaries[f[:-len(".csv")]] = p
-            elif oitcsv.is_raw_header(header):
+            elif oitres.is_raw_header(header):
                 raws[f[:-len(".csv")]] = p
             else:
-                raise oitcsv.ResultsError(f"{p}: not an oitbench summary or --raw CSV (no experiment and "
+                raise oitres.ResultsError(f"{p}: not an oitbench summary or --raw CSV (no experiment and "
                                           "median_ms columns, nor rep and cpu_ms)")
         if not summaries:
-            raise oitcsv.ResultsError(f"{self.folder}: no oitbench summary CSV here (presets/NAME.csv, "
+            raise oitres.ResultsError(f"{self.folder}: no oitbench summary CSV here (presets/NAME.csv, "
                                       "written by `oitbench run --out`)")
-        self.presets, self.raw = {}, {}  # NAME: oitcsv.Run; NAME: its raw file or None
+        self.presets, self.raw = {}, {}  # NAME: oitres.Run; NAME: its raw file or None
         for name, p in summaries.items():
             raw = raws.get(name + "_raw")
-            header, rows = oitcsv.read_csv(p)
-            raw_params = oitcsv.raw_param_columns(oitcsv.read_header(raw)) if raw else None
-            self.presets[name] = oitcsv.Run(p, header, rows, raw_params)
+            header, rows = oitres.read_csv(p)
+            oitres.check_summary_header(p, header)
+            raw_params = oitres.raw_param_columns(oitres.read_header(raw)) if raw else None
+            self.presets[name] = oitres.Run(p, header, rows, raw_params)
             self.raw[name] = raw
         self.orphans = [os.path.basename(p) for n, p in raws.items()
                         if not (n.endswith("_raw") and n[:-len("_raw")] in summaries)]
@@ -1014,7 +1018,7 @@ class Paired:
 
     def order(self, key):
         """A case's passes together, in the order the runs wrote them: variant, parameters, resolution, pass."""
-        return ([oitcsv.sort_key(v) for v in (key[1],) + key[5:] + (key[3], key[4])],
+        return ([oitres.sort_key(v) for v in (key[1],) + key[5:] + (key[3], key[4])],
                 self.pass_rank.get((key[0], key[2]), 0))
 
     def differing(self, exp):
@@ -1022,10 +1026,10 @@ class Paired:
         sides (a parameter scoped away from a row counts as empty), each side's values as text."""
         fields = [("variant", lambda r: r.get("variant", "")),
                   ("resolution", lambda r: f"{r.get('width', '')}x{r.get('height', '')}")]
-        fields += [(p, lambda r, p=p: r.get(p, "") if oitcsv.applies(p, r) else "") for p in self.params_of[exp]]
+        fields += [(p, lambda r, p=p: r.get(p, "") if oitres.applies(p, r) else "") for p in self.params_of[exp]]
         out = []
         for name, get in fields:
-            values = [sorted({get(r) for r in run.rows_of(exp)}, key=oitcsv.sort_key) for run in self.runs]
+            values = [sorted({get(r) for r in run.rows_of(exp)}, key=oitres.sort_key) for run in self.runs]
             if values[0] != values[1]:
                 shown = ["; ".join(v or "(empty)" for v in vs[:8]) + ("; \u2026" if len(vs) > 8 else "") for vs in values]
                 out.append((name, shown))
@@ -1057,14 +1061,14 @@ def side_cell(rows):
     """What one side has for a case that was not compared: nothing, ok, or its status and reason."""
     if not rows:
         return '<span class="muted">not in this run</span>'
-    bad = [r for r in rows if not oitcsv.is_ok(r)]
+    bad = [r for r in rows if not oitres.is_ok(r)]
     if not bad:
         total = next((r for r in rows if r.get("pass") == "total"), rows[0])
-        ms = oitcsv.to_float(total.get("median_ms"))
+        ms = oitres.to_float(total.get("median_ms"))
         return f'<span class="case">{badge("ok")}' + (f" {esc(compare.fmt_ms(ms))} ms" if ms is not None
                                                        else " (no median)") + "</span>"
     row = next((r for r in bad if r.get("pass") == "total"), bad[0])
-    return badge(oitcsv.status_of(row)) + " " + reason_html(row.get("reason", ""))
+    return badge(oitres.status_of(row)) + " " + reason_html(row.get("reason", ""))
 
 
 def counts_cells(n):
@@ -1075,10 +1079,10 @@ def counts_cells(n):
 def sides_section(page, sides):
     """The header: for each side, the driver and everything else that identifies the run."""
     a, b = sides
-    columns = ["driver"] + [c for c in oitcsv.RUN_COLUMNS if c != "driver" and c not in SHOWN_ELSEWHERE]
+    columns = ["driver"] + [c for c in oitres.RUN_COLUMNS if c != "driver" and c not in SHOWN_ELSEWHERE]
     columns.append("timer")  # a ratio of two rows is of their primary clocks
     labels = dict(META_COLUMNS)
-    described = {c["name"]: c["description"] for c in oitcsv.SCHEMA["summary_columns"]}
+    described = {c["name"]: c["description"] for c in oitres.SCHEMA["summary_columns"]}
     rows, classes = [], []
 
     def add(label, values, title=""):
@@ -1236,7 +1240,7 @@ def build_compare(args):
     for s in sides:
         for inside in (os.path.realpath(s.path), os.path.realpath(s.folder)):
             if out == inside or inside.startswith(out + os.sep):
-                raise oitcsv.ResultsError(f"{args.out_dir}: the page would overwrite its own inputs ({s.path}); "
+                raise oitres.ResultsError(f"{args.out_dir}: the page would overwrite its own inputs ({s.path}); "
                                           "give -o a folder of its own (e.g. RESULTS/compare-A-B)")
     a, b = sides
     pairs = [Paired(name, sides, args) for name in sorted(set(a.presets) & set(b.presets))]
@@ -1291,16 +1295,16 @@ def shown_path(path):
 def build(args):
     images_dir = args.images if args.images else default_images_dir(args.inputs)
     if args.images and not os.path.isdir(args.images):
-        raise oitcsv.ResultsError(f"{args.images}: no such images folder (--images)")
+        raise oitres.ResultsError(f"{args.images}: no such images folder (--images)")
     pages = []
     inputs, skipped, base = collect(args.inputs, args.out_dir, images_dir, pages)
     for d in args.ab or []:
         if not os.path.isdir(d):
-            raise oitcsv.ResultsError(f"--ab {d}: not a folder (give scripts/ab.py's or ab_bench.sh's out folder)")
+            raise oitres.ResultsError(f"--ab {d}: not a folder (give scripts/ab.py's or ab_bench.sh's out folder)")
     for p in [base] + ([images_dir] if images_dir else []) + list(args.ab or []):
         out, inside = os.path.realpath(args.out_dir), os.path.realpath(p)
         if out == inside or inside.startswith(out + os.sep):
-            raise oitcsv.ResultsError(f"{args.out_dir}: the report would overwrite its own inputs ({p}); "
+            raise oitres.ResultsError(f"{args.out_dir}: the report would overwrite its own inputs ({p}); "
                                       "give -o a folder of its own (e.g. RESULTS/report)")
     since = prepare_out_dir(args.out_dir)
     title = args.title or f"oitbench report: {os.path.basename(base) or 'results'}"
@@ -1374,10 +1378,10 @@ def main(argv=None):
         return 2
     try:
         return build_compare(args) if args.compare else build(args)
-    except oitcsv.ResultsError as e:
+    except oitres.ResultsError as e:
         print(f"report.py: {e}", file=sys.stderr)
         return 2
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

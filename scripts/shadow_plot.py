@@ -14,7 +14,6 @@ import os
 import sys
 from collections import defaultdict
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 import matplotlib  # noqa: E402
@@ -22,7 +21,8 @@ import matplotlib  # noqa: E402
 matplotlib.use(os.environ["MPLBACKEND"])
 import matplotlib.pyplot as plt  # noqa: E402
 
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
+from oitbench import cli  # noqa: E402
 
 PASSES = ("shadow-sort", "shadow-map")  # micro/oit/shadow_map.hpp: kShadowSortPass, kShadowMapPass
 
@@ -35,20 +35,20 @@ def table_rows(rows):
     """The Markdown table of the ok rows: one line per case, medians of its passes."""
     cases = {}
     for r in rows:
-        slices = oitcsv.to_float(r.get("shadow_slices"))
-        if r.get("experiment") != "oit" or slices is None or not oitcsv.is_ok(r):
+        slices = oitres.to_float(r.get("shadow_slices"))
+        if r.get("experiment") != "oit" or slices is None or not oitres.is_ok(r):
             continue
         key = (os.path.basename(r.get("scene", "")), r.get("technique", ""),
-               int(oitcsv.to_float(r.get("shadow_resolution")) or 0), int(slices))
+               int(oitres.to_float(r.get("shadow_resolution")) or 0), int(slices))
         case = cases.setdefault(key, {"rmse": r.get("shadow_rmse"), "max": r.get("shadow_max_abs_error"),
-                                      "bytes": oitcsv.to_float(r.get("shadow_map_bytes"))})
-        case[r.get("pass")] = oitcsv.to_float(r.get("median_ms"))
+                                      "bytes": oitres.to_float(r.get("shadow_map_bytes"))})
+        case[r.get("pass")] = oitres.to_float(r.get("median_ms"))
 
     def ms(v):
         return "" if v is None else f"{v:.0f}"
 
     def num(v):
-        x = oitcsv.to_float(v)
+        x = oitres.to_float(v)
         return "" if x is None else f"{x:.3g}"
 
     lines = [TABLE_HEADER, "|" + "---|" * TABLE_HEADER.count(" | ") + "---|"]
@@ -63,16 +63,16 @@ def series(rows):
     """{(scene, technique, resolution): {slices: {"rmse", "max", pass: ms}}} from ok rows."""
     out = defaultdict(lambda: defaultdict(dict))
     for r in rows:
-        slices = oitcsv.to_float(r.get("shadow_slices"))
-        if r.get("experiment") != "oit" or slices is None or not oitcsv.is_ok(r):
+        slices = oitres.to_float(r.get("shadow_slices"))
+        if r.get("experiment") != "oit" or slices is None or not oitres.is_ok(r):
             continue
         key = (os.path.basename(r.get("scene", "")), r.get("technique", ""), r.get("shadow_resolution", ""))
         point = out[key][int(slices)]
         if r.get("pass") in PASSES:
-            point[r["pass"]] = oitcsv.to_float(r.get("median_ms"))
+            point[r["pass"]] = oitres.to_float(r.get("median_ms"))
         for column, name in (("shadow_rmse", "rmse"), ("shadow_max_abs_error", "max")):
-            if oitcsv.to_float(r.get(column)) is not None:
-                point[name] = oitcsv.to_float(r.get(column))
+            if oitres.to_float(r.get(column)) is not None:
+                point[name] = oitres.to_float(r.get(column))
     return out
 
 
@@ -117,8 +117,8 @@ def main(argv=None):
     rows = []
     try:
         for path in args.csv:
-            rows += oitcsv.read_csv(path)[1]
-    except oitcsv.ResultsError as e:
+            rows += oitres.read_csv(path)[1]
+    except oitres.ResultsError as e:
         print(f"shadow_plot.py: {e}", file=sys.stderr)
         return 2
     data = series(rows)
@@ -135,4 +135,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

@@ -16,6 +16,7 @@ network sorts (the 0-1 principle, exhaustively up to 20 elements, randomly above
 import argparse
 import pathlib
 import sys
+from oitbench import cli  # noqa: E402
 
 MAX_N = 32
 OUT = pathlib.Path(__file__).resolve().parent.parent / "shaders" / "sorts" / "network_tables.glsl"
@@ -120,4 +121,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

@@ -23,8 +23,8 @@ import signal
 import statistics
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
+from oitbench import cli  # noqa: E402
 
 DASH = "\u2014"
 
@@ -221,7 +221,7 @@ def row_words(row, params):
         v = row.get(p, "")
         if v == "":
             continue
-        if oitcsv.to_float(v) is None:
+        if oitres.to_float(v) is None:
             out |= words(v)
         out.add(f"{norm(p).replace('_', '')}={norm(v).replace('_', '')}")
     return out
@@ -230,12 +230,12 @@ def row_words(row, params):
 def load_paper(paper_dir):
     files = sorted(glob.glob(os.path.join(paper_dir, "*.csv")))
     if not files:
-        raise oitcsv.ResultsError(f"{paper_dir}: no paper tables (*.csv) there; give --paper DIR")
+        raise oitres.ResultsError(f"{paper_dir}: no paper tables (*.csv) there; give --paper DIR")
     rows = []
     for f in files:
-        header, part = oitcsv.read_csv(f)
+        header, part = oitres.read_csv(f)
         if "technique" not in header or "value" not in header:
-            raise oitcsv.ResultsError(f"{f}: not a paper table (needs source,table,...,technique,metric,value)")
+            raise oitres.ResultsError(f"{f}: not a paper table (needs source,table,...,technique,metric,value)")
         rows += part
     return rows
 
@@ -253,7 +253,7 @@ class Ours:
                     # are our extension and stay out of their tables.
                     if r.get("capture", "") not in ("", "PPLL"):
                         continue
-                    if oitcsv.is_ok(r) and oitcsv.to_float(r.get("median_ms")) is not None:
+                    if oitres.is_ok(r) and oitres.to_float(r.get("median_ms")) is not None:
                         self.rows.append((run, r, row_words(r, params), params))
 
     def scoped(self, presets):
@@ -293,7 +293,7 @@ class Ours:
             view_col = next((c for c in VIEW_COLUMNS if c in params and r.get(c)), None)
             if view_col and view and norm(r[view_col]) != norm(view):
                 continue
-            hits.append((passes.index(r["pass"]), oitcsv.to_float(r["median_ms"])))
+            hits.append((passes.index(r["pass"]), oitres.to_float(r["median_ms"])))
         if not hits:
             return None, 0
         best_pass = min(h[0] for h in hits)
@@ -325,12 +325,12 @@ def size_value(row, column):
 
 
 def size_matches(row, params, size, column=None):
-    want = oitcsv.to_float(size)
+    want = oitres.to_float(size)
     if column:
-        return column in params and oitcsv.to_float(size_value(row, column)) == want
+        return column in params and oitres.to_float(size_value(row, column)) == want
     for c in SIZE_COLUMNS:
         if c in params and row.get(c, "") != "":
-            return oitcsv.to_float(size_value(row, c)) == want
+            return oitres.to_float(size_value(row, c)) == want
     return False
 
 
@@ -368,7 +368,7 @@ def build_rows(table, paper_rows, ours):
     for r in rows:
         # Tables of scenes we do not ship compare with the median over our scenes.
         our_scene, our_view = ("", "") if table.any_scene else (r["scene"], r["view"])
-        paper_value = oitcsv.to_float(r["value"])
+        paper_value = oitres.to_float(r["value"])
         ours_ms, n = ours.lookup(r["technique"], r["size"], our_scene, r["metric"], our_view)
         base_tech = baseline_name(table, r["technique"])
         base_size = r["size"]
@@ -378,7 +378,7 @@ def build_rows(table, paper_rows, ours):
             base = next((b for b in rows if b["technique"] == base_tech and b["scene"] == r["scene"] and
                          b["view"] == r["view"] and (table.baseline_own_size or b["size"] == r["size"]) and
                          b["metric"] == r["metric"]), None)
-            base_v = oitcsv.to_float(base["value"]) if base else None
+            base_v = oitres.to_float(base["value"]) if base else None
             paper_speedup = base_v / paper_value if base_v and paper_value else None
             if table.baseline_own_size and base:
                 base_size = base["size"]
@@ -409,12 +409,12 @@ def lines_rows(table, rows, ours):
         n = segments.get(r["scene"], "")
         got = {}
         for tech in ("slices", "exact"):
-            ms = [oitcsv.to_float(x["median_ms"]) for _, x, _, _ in ours.rows
+            ms = [oitres.to_float(x["median_ms"]) for _, x, _, _ in ours.rows
                   if x["experiment"] == "lines" and x["pass"] == "total" and x.get("technique") == tech
-                  and oitcsv.to_float(x.get("segments")) == oitcsv.to_float(n)]
+                  and oitres.to_float(x.get("segments")) == oitres.to_float(n)]
             got[tech] = 1000.0 / statistics.median(ms) if ms else None
         out.append({"table": table.name, "scene": r["scene"], "view": "", "size": n, "technique": r["technique"],
-                    "metric": "frame_rate", "paper": oitcsv.to_float(r["value"]), "unit": "fps",
+                    "metric": "frame_rate", "paper": oitres.to_float(r["value"]), "unit": "fps",
                     "paper_speedup": None, "ours_ms": got["slices"], "ours_speedup": got["exact"],
                     "ours_cases": int(got["slices"] is not None)})
     return out
@@ -447,7 +447,7 @@ def summary_rows(table, rows, ours):
             ours_value = None
         out.append({"table": table.name, "scene": r["scene"], "view": "", "size": "", "technique": tech,
                     "metric": r["metric"], "paper": None, "unit": r["unit"],
-                    "paper_speedup": oitcsv.to_float(r["value"]), "ours_ms": None, "ours_speedup": ours_value,
+                    "paper_speedup": oitres.to_float(r["value"]), "ours_ms": None, "ours_speedup": ours_value,
                     "ours_cases": len(speedups)})
     return out
 
@@ -554,7 +554,7 @@ def select_tables(name):
         return exact
     found = [t for t in TABLES if name.lower() in t.name.lower()]
     if not found:
-        raise oitcsv.ResultsError(f"no table '{name}'; tables: {', '.join(t.name for t in TABLES)}")
+        raise oitres.ResultsError(f"no table '{name}'; tables: {', '.join(t.name for t in TABLES)}")
     return found
 
 
@@ -564,14 +564,14 @@ def paired_speedups(rows):
     one, with experiment, technique, scene, view, pass, resolution, baseline, speedup, ci_lo, ci_hi."""
     out = []
     for r in rows:
-        sp = oitcsv.to_float(r.get("speedup"))
-        if not oitcsv.is_ok(r) or sp is None:
+        sp = oitres.to_float(r.get("speedup"))
+        if not oitres.is_ok(r) or sp is None:
             continue
         out.append({"experiment": r["experiment"], "technique": r.get("technique", "") or r.get("variant", ""),
                     "scene": r.get("scene", ""), "view": r.get("view", ""), "pass": r["pass"],
                     "resolution": f"{r.get('width', '')}x{r.get('height', '')}", "baseline": r.get("baseline", ""),
-                    "speedup": sp, "ci_lo": oitcsv.to_float(r.get("speedup_ci_lo")),
-                    "ci_hi": oitcsv.to_float(r.get("speedup_ci_hi"))})
+                    "speedup": sp, "ci_lo": oitres.to_float(r.get("speedup_ci_lo")),
+                    "ci_hi": oitres.to_float(r.get("speedup_ci_hi"))})
     return out
 
 
@@ -627,8 +627,8 @@ def main(argv=None):
         return 0
     if args.paired:
         try:
-            runs = [oitcsv.Run.load(p) for p in args.csv]
-        except oitcsv.ResultsError as e:
+            runs = [oitres.Run.load(p) for p in args.csv]
+        except oitres.ResultsError as e:
             print(f"tables.py: {e}", file=sys.stderr)
             return 2
         print(paired_markdown([r for run in runs for r in run.rows]))
@@ -636,8 +636,8 @@ def main(argv=None):
     try:
         tables = select_tables(args.table)
         paper_rows = load_paper(args.paper)
-        ours = Ours([oitcsv.Run.load(p) for p in args.csv])
-    except oitcsv.ResultsError as e:
+        ours = Ours([oitres.Run.load(p) for p in args.csv])
+    except oitres.ResultsError as e:
         print(f"tables.py: {e}", file=sys.stderr)
         return 2
     if args.format == "csv":
@@ -655,4 +655,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

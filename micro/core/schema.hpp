@@ -2,7 +2,7 @@
 // The result schema, defined once: the statuses a case can end in, the framework's columns of a
 // summary row and of a --raw row (name, type, unit, meaning), and the JSON that
 // `oitbench list --schema json` prints: those columns plus every registered experiment's metrics
-// and parameters. scripts/oitcsv.py reads a committed copy of that JSON (scripts/schema.json),
+// and parameters. scripts/oitbench/results.py reads a committed copy of that JSON (scripts/schema.json),
 // which a test regenerates and compares, so no column list is typed twice.
 #include <string>
 #include <vector>

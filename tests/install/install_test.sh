@@ -15,7 +15,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$cmake" --install "$build" --prefix "$P" >"$T/install.log"
 for f in bin/oitbench share/oitbench/shaders/common/oitbench.glsl share/oitbench/scenes/planes.json \
-         share/oitbench/presets/default.json share/oitbench/scripts/oitcsv.py share/oitbench/scripts/tables.py \
+         share/oitbench/presets/default.json share/oitbench/scripts/oitbench/results.py share/oitbench/scripts/tables.py \
          share/oitbench/scripts/report.py share/oitbench/scripts/schema.json share/oitbench/scripts/bundle.sh \
          share/oitbench/results/published/README.md share/doc/oitbench/README.md share/doc/oitbench/docs/usage.md; do
   [ -e "$P/$f" ] || fail "cmake --install did not install $f"
@@ -61,11 +61,12 @@ if [ -n "$python" ]; then
   "$python" - "$P/share/oitbench/scripts" <<'PY' || fail "the installed scripts do not read the prefix's data"
 import os, sys
 sys.path.insert(0, sys.argv[1])
-import oitcsv, tables
+from oitbench import results
+import tables
 share = os.path.dirname(sys.argv[1])
-assert oitcsv.SCHEMA_PATH == os.path.join(share, "scripts", "schema.json"), oitcsv.SCHEMA_PATH
+assert results.SCHEMA_PATH == os.path.join(share, "scripts", "schema.json"), results.SCHEMA_PATH
 assert tables.default_paper_dir() == os.path.join(share, "results", "published"), tables.default_paper_dir()
-print("scripts read", oitcsv.SCHEMA_PATH, "and", tables.default_paper_dir())
+print("scripts read", results.SCHEMA_PATH, "and", tables.default_paper_dir())
 PY
   "$python" "$P/share/oitbench/scripts/tables.py" "$T/occ.csv" --format csv >"$T/tables.csv" ||
     fail "installed tables.py exited $?"

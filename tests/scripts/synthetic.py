@@ -8,7 +8,7 @@ import sys
 
 SCRIPTS = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "scripts")
 sys.path.insert(0, SCRIPTS)
-import oitcsv  # noqa: E402
+from oitbench import results as oitres  # noqa: E402
 
 RENDERER = "Synthetic GPU (test)"
 
@@ -18,8 +18,8 @@ def write_summary(path, rows, metrics=(), params=(), raw_path=None, reps=5, rng=
     Missing framework fields get plausible values; with raw_path, `reps` samples per row are written
     around the median (and min/max/mad match them)."""
     rng = rng or random.Random(7)
-    params = list(params) + [p for p in oitcsv.FRAMEWORK_PARAMS if p not in params]
-    header = oitcsv.BASE_COLUMNS + list(metrics) + params
+    params = list(params) + [p for p in oitres.FRAMEWORK_PARAMS if p not in params]
+    header = oitres.BASE_COLUMNS + list(metrics) + params
     raw_rows = []
     out = []
     for r in rows:
@@ -33,9 +33,9 @@ def write_summary(path, rows, metrics=(), params=(), raw_path=None, reps=5, rng=
             med = float(full["median_ms"])
             noise = r.get("noise", 0.05)
             samples = sorted(med * math.exp(rng.gauss(0, noise)) for _ in range(reps))
-            shift = med / oitcsv.median(samples)  # keep the stated median exactly
+            shift = med / oitres.median(samples)  # keep the stated median exactly
             samples = [s * shift for s in samples]
-            mad = oitcsv.median([abs(s - med) for s in samples])
+            mad = oitres.median([abs(s - med) for s in samples])
             full.update({"mad_ms": f"{mad:.6g}", "min_ms": f"{samples[0]:.6g}", "max_ms": f"{samples[-1]:.6g}",
                          "samples": str(reps), "mean_ms": f"{sum(samples) / reps:.6g}"})
             for i, s in enumerate(samples):
@@ -53,7 +53,7 @@ def write_summary(path, rows, metrics=(), params=(), raw_path=None, reps=5, rng=
         w.writeheader()
         w.writerows(out)
     if raw_path:
-        raw_header = oitcsv.RAW_BASE_COLUMNS + params
+        raw_header = oitres.RAW_BASE_COLUMNS + params
         with open(raw_path, "w", newline="", encoding="utf-8") as f:
             w = csv.DictWriter(f, fieldnames=raw_header, lineterminator="\n")
             w.writeheader()

@@ -430,7 +430,7 @@ class ComparePageSynthetic(ReportCase):
             f.write(b"\x89PNG\r\n\x1a\n\x00\x00 not a csv \xff\n")
         proc = self.compare_page(a, b, check=False)
         self.assertEqual(proc.returncode, 2, proc.stderr)
-        self.assertIn(os.path.join(b, "presets", "broken.csv") + ": not a text file", proc.stderr)
+        self.assertIn(os.path.join(b, "presets", "broken.csv") + ":1: not a text file", proc.stderr)
         with open(os.path.join(b, "presets", "broken.csv"), "w", encoding="utf-8") as f:
             f.write("name,value\nx,1\n")
         proc = self.compare_page(a, b, check=False)

@@ -13,7 +13,7 @@ import unittest
 from support import PYTHON, TempDirTest, oitbench_exe, run_oitbench
 from synthetic import SCRIPTS
 
-import oitcsv
+from oitbench import results as oitres
 
 SCHEMA_JSON = os.path.join(SCRIPTS, "schema.json")
 
@@ -69,14 +69,14 @@ class CommittedSchemaIsTheBinarys(TempDirTest):
             header = next(csv.reader(f))
         with open(raw, newline="") as f:
             raw_header = next(csv.reader(f))
-        self.assertEqual(header, [c["name"] for c in oitcsv.SCHEMA["summary_columns"]])
-        self.assertEqual(raw_header, [c["name"] for c in oitcsv.SCHEMA["raw_columns"]])
+        self.assertEqual(header, [c["name"] for c in oitres.SCHEMA["summary_columns"]])
+        self.assertEqual(raw_header, [c["name"] for c in oitres.SCHEMA["raw_columns"]])
         with open(out, newline="") as f:
             rows = list(csv.DictReader(f))
         self.assertTrue(rows)
         for r in rows:
-            self.assertIn(r["status"], oitcsv.STATUSES)
-            self.assertEqual(r["schema"], str(oitcsv.SCHEMA_VERSION))
+            self.assertIn(r["status"], oitres.STATUSES)
+            self.assertEqual(r["schema"], str(oitres.SCHEMA_VERSION))
 
 
 class SchemaPageIsGenerated(TempDirTest):
@@ -89,14 +89,14 @@ class SchemaPageIsGenerated(TempDirTest):
         with open(os.path.join(SCRIPTS, "..", "docs", "csv-schema.md"), encoding="utf-8") as f:
             committed = f.read()
         self.assertEqual(committed, generated, "docs/csv-schema.md is stale: /usr/bin/python3 scripts/schema_doc.py")
-        for c in oitcsv.SCHEMA["summary_columns"]:
+        for c in oitres.SCHEMA["summary_columns"]:
             self.assertIn(f"`{c['name']}`", generated)
 
 
 class ScriptsTypeNoColumnList(unittest.TestCase):
     def column_lists(self, path):
         """List, tuple and set literals in a script with three or more of the schema's column names."""
-        names = {c["name"] for c in oitcsv.SCHEMA["summary_columns"]} | {c["name"] for c in oitcsv.SCHEMA["raw_columns"]}
+        names = {c["name"] for c in oitres.SCHEMA["summary_columns"]} | {c["name"] for c in oitres.SCHEMA["raw_columns"]}
         with open(path, encoding="utf-8") as f:
             tree = ast.parse(f.read(), path)
         found = []
@@ -108,12 +108,12 @@ class ScriptsTypeNoColumnList(unittest.TestCase):
                     found.append((node.lineno, hits))
         return found
 
-    def test_oitcsv_derives_every_column_list_from_the_schema(self):
-        self.assertEqual(self.column_lists(os.path.join(SCRIPTS, "oitcsv.py")), [])
-        self.assertIn("median_ms", oitcsv.BASE_COLUMNS)
-        self.assertIn("rmse", oitcsv.KNOWN_METRICS)
-        self.assertIn("backend", oitcsv.RUN_COLUMNS)
-        self.assertEqual(oitcsv.FRAMEWORK_PARAMS, ["fault", "seed"])
+    def test_the_reader_derives_every_column_list_from_the_schema(self):
+        self.assertEqual(self.column_lists(os.path.join(SCRIPTS, "oitbench", "results.py")), [])
+        self.assertIn("median_ms", oitres.BASE_COLUMNS)
+        self.assertIn("rmse", oitres.KNOWN_METRICS)
+        self.assertIn("backend", oitres.RUN_COLUMNS)
+        self.assertEqual(oitres.FRAMEWORK_PARAMS, ["fault", "seed"])
 
     def test_the_check_finds_a_typed_list(self):
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_typed_list_probe.py")

@@ -1,4 +1,4 @@
-"""Reading oitbench's tidy CSV: shared by plot.py, compare.py and tables.py.
+"""Reading oitbench's tidy CSV: the one reader every script uses.
 
 A summary file (`oitbench run ... --out f.csv`) has the framework's fixed columns (BASE_COLUMNS), then
 the metric columns of every registered experiment, then one column per parameter of every experiment.
@@ -10,13 +10,15 @@ for files without it, Run.params() falls back to a raw file's header, then to th
 (and METRIC_PATTERN for metrics of other builds), and otherwise treats a filled column as a parameter.
 """
 import csv
+import io
 import json
 import math
 import os
 import re
 import statistics
 
-SCHEMA_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "schema.json")
+# scripts/schema.json, beside the package (installed as share/oitbench/scripts/schema.json).
+SCHEMA_PATH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "schema.json")
 
 
 def load_schema(path=SCHEMA_PATH):
@@ -51,36 +53,128 @@ _CONDITION = re.compile(r"^\s*(\w+)\s+in\s+\{([^}]*)\}\s*$")
 
 
 class ResultsError(Exception):
-    """A file that is not an oitbench CSV, or lacks what a script needs; the message names the file."""
+    """A file that is not an oitbench CSV, or lacks what a script needs. The message names the file, and
+    the line (FILE:LINE: ...) where one line is at fault; scripts print it after their name and exit 2."""
+
+
+def _where(path, line=None):
+    return f"{path}:{line}" if line else f"{path}"
+
+
+def _open_error(path, e):
+    if isinstance(e, IsADirectoryError) or os.path.isdir(path):
+        return ResultsError(f"{path}: is a folder, not a CSV file")
+    return ResultsError(f"{path}: cannot read ({e.strerror or e})")
+
+
+def _read_text(path, limit=None):
+    """The file's text (its first `limit` bytes when given), refusing what is not a text file with the line
+    of the first bad byte: not UTF-8, or a NUL byte (Python's csv module reads NUL as an ordinary
+    character, so a binary file could otherwise pass as one odd row)."""
+    try:
+        if os.path.isdir(path):
+            raise IsADirectoryError(21, "Is a directory", path)
+        with open(path, "rb") as f:
+            data = f.read() if limit is None else f.read(limit)
+    except OSError as e:
+        raise _open_error(path, e) from e
+    nul = data.find(b"\0")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        if limit is not None and e.start >= len(data) - 3 and e.reason == "unexpected end of data":
+            text = data[:e.start].decode("utf-8")  # a character cut by the limit, not a bad byte
+        else:
+            bad = e.start if nul < 0 else min(nul, e.start)
+            line = data.count(b"\n", 0, bad) + 1
+            raise ResultsError(f"{path}:{line}: not a text file (not UTF-8 at byte {bad})") from e
+    if nul >= 0:
+        line = data.count(b"\n", 0, nul) + 1
+        raise ResultsError(f"{path}:{line}: not a text file (a NUL byte at byte {nul})")
+    return text
+
+
+def _records(path, text):
+    """(line, fields) for every non-blank record; csv errors name the line."""
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        for fields in reader:
+            if fields:
+                yield reader.line_num, fields
+    except csv.Error as e:
+        raise ResultsError(f"{path}:{reader.line_num}: not valid CSV ({e})") from e
 
 
 def read_csv(path):
-    """Rows as dicts, plus the header. Raises ResultsError naming the file on anything unreadable."""
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.DictReader(f)
-            header = reader.fieldnames or []
-            rows = [dict(r) for r in reader]
-    except OSError as e:
-        raise ResultsError(f"{path}: cannot read ({e.strerror})") from e
-    except csv.Error as e:
-        raise ResultsError(f"{path}: not valid CSV ({e})") from e
-    except UnicodeDecodeError as e:
-        raise ResultsError(f"{path}: not a text file (not UTF-8 at byte {e.start})") from e
+    """Rows as dicts, plus the header. Raises ResultsError naming the file (and the line) on anything
+    unreadable: a folder, a missing file, a binary file, a NUL byte, broken quoting, a row with more or
+    fewer fields than the header (a last row cut short by an interrupted run), and, in an oitbench CSV,
+    a schema version this reader does not know."""
+    records = _records(path, _read_text(path))
+    first = next(records, None)
+    if first is None:
+        return [], []
+    header = first[1]
+    rows = []
+    for line, fields in records:
+        if len(fields) != len(header):
+            what = "cut short" if len(fields) < len(header) else "too long"
+            raise ResultsError(f"{path}:{line}: row {what}: {len(fields)} fields, the header (line {first[0]}) "
+                               f"has {len(header)}")
+        rows.append(dict(zip(header, fields)))
+        if "schema" in header and (is_summary_header(header) or is_raw_header(header)):
+            check_schema_version(path, line, rows[-1].get("schema", ""))
     return header, rows
 
 
-def read_header(path):
-    """The header row alone (a raw file can be large), with read_csv's errors."""
+def check_schema_version(path, line, value):
+    """Refuse a row written by a schema this reader does not know (1 to SCHEMA_VERSION)."""
     try:
-        with open(path, newline="", encoding="utf-8") as f:
-            return next(csv.reader(f), [])
-    except OSError as e:
-        raise ResultsError(f"{path}: cannot read ({e.strerror})") from e
-    except csv.Error as e:
-        raise ResultsError(f"{path}: not valid CSV ({e})") from e
-    except UnicodeDecodeError as e:
-        raise ResultsError(f"{path}: not a text file (not UTF-8 at byte {e.start})") from e
+        version = int(value)
+    except ValueError:
+        version = None
+    if version is None or not 1 <= version <= SCHEMA_VERSION:
+        raise ResultsError(f"{_where(path, line)}: unknown schema version '{value}' (this reader knows 1 to "
+                           f"{SCHEMA_VERSION}; a newer oitbench wrote it?)")
+
+
+def read_header(path):
+    """The header row alone (a raw file can be large), with read_csv's errors for what it reads."""
+    text = _read_text(path, limit=1 << 20)
+    if len(text) >= 1 << 19 and "\n" not in text:
+        raise ResultsError(f"{path}:1: no end of line in the first MiB: not a CSV file")
+    first = next(_records(path, text.split("\n", 1)[0] + "\n"), None)
+    return first[1] if first else []
+
+
+# The columns that say which case a row is and how it ended (scripts index rows by them); every schema
+# version has had them, except `parameters` (Run.params falls back without it).
+REQUIRED_SUMMARY_COLUMNS = [c["name"] for c in SCHEMA["summary_columns"] if c["role"] == "base"
+                            and c.get("group") in ("case", "result") and c["name"] != "parameters"]
+
+
+def check_summary_header(path, header):
+    """Raise ResultsError (FILE:1) unless `header` is an oitbench summary file's, with every required column."""
+    if not header:
+        raise ResultsError(f"{path}: empty file, not an oitbench summary CSV")
+    if not is_summary_header(header):
+        if is_raw_header(header):
+            raise ResultsError(f"{path}:1: this is a --raw file (one row per repetition); "
+                               "pass the --out summary file, and the raw file with --raw")
+        raise ResultsError(f"{path}:1: not an oitbench summary CSV (no experiment/median_ms columns)")
+    missing = [c for c in REQUIRED_SUMMARY_COLUMNS if c not in header]
+    if missing:
+        raise ResultsError(f"{path}:1: not an oitbench summary CSV: no column {', '.join(missing)}")
+
+
+def check_raw_header(path, header):
+    """Raise ResultsError (FILE:1) unless `header` is an oitbench --raw file's."""
+    if not header:
+        raise ResultsError(f"{path}: empty file, not an oitbench --raw CSV")
+    missing = [c for c in ("variant", "pass") if c not in header]
+    if not is_raw_header(header) or missing:
+        raise ResultsError(f"{path}:1: not an oitbench --raw CSV (no " +
+                           (f"column {', '.join(missing)})" if is_raw_header(header) else "rep/cpu_ms columns)"))
 
 
 def is_summary_header(header):
@@ -128,16 +222,11 @@ class Run:
     @classmethod
     def load(cls, path, raw_path=None, label=None):
         header, rows = read_csv(path)
-        if not is_summary_header(header):
-            if is_raw_header(header):
-                raise ResultsError(f"{path}: this is a --raw file (one row per repetition); "
-                                   "pass the --out summary file, and the raw file with --raw")
-            raise ResultsError(f"{path}: not an oitbench summary CSV (no experiment/median_ms columns)")
+        check_summary_header(path, header)
         raw_params = None
         if raw_path:
             raw_header, _ = read_csv(raw_path)
-            if not is_raw_header(raw_header):
-                raise ResultsError(f"{raw_path}: not an oitbench --raw CSV (no rep/cpu_ms columns)")
+            check_raw_header(raw_path, raw_header)
             raw_params = raw_param_columns(raw_header)
         return cls(path, header, rows, raw_params, label)
 
