@@ -14,7 +14,7 @@ from collections import defaultdict
 from oitbench import results as oitres  # noqa: E402
 from oitbench import cli  # noqa: E402
 
-EFFECT_PASSES = ("shadow-sort", "shadow-map", "opaque")  # micro/oit/scene_passes.cpp: effect_pass_names()
+EFFECT_PASSES = ("shadow-sort", "shadow-map", "opaque")  # micro/oit/scene/scene_passes.cpp: effect_pass_names()
 HEADER = ("| scene | view | technique | effects | fragments captured | hidden_fragments | "
           + " | ".join(f"{p} ms" for p in EFFECT_PASSES) + " | technique's passes ms | total ms | total vs first |")
 

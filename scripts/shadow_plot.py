@@ -24,7 +24,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from oitbench import results as oitres  # noqa: E402
 from oitbench import cli  # noqa: E402
 
-PASSES = ("shadow-sort", "shadow-map")  # micro/oit/shadow_map.hpp: kShadowSortPass, kShadowMapPass
+PASSES = ("shadow-sort", "shadow-map")  # micro/oit/scene/shadow_map.hpp: kShadowSortPass, kShadowMapPass
 
 
 TABLE_HEADER = ("| scene | technique | shadow_resolution | shadow_slices | shadow_rmse | shadow_max_abs_error "

@@ -13,7 +13,7 @@
 
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
-#include "oit/packed_fragment.hpp"
+#include "oit/capture/packed_fragment.hpp"
 
 namespace oitbench {
 

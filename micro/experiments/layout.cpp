@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/registry.hpp"
-#include "oit/storage_layout.hpp"
+#include "oit/storage/storage_layout.hpp"
 
 namespace oitbench {
 

@@ -16,13 +16,13 @@
 
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
-#include "oit/fragment_lists.hpp"
-#include "oit/gpu_mesh.hpp"
-#include "oit/image_compare.hpp"
-#include "oit/metrics.hpp"
-#include "oit/reference.hpp"
-#include "oit/resolve_sort.hpp"
-#include "oit/scene.hpp"
+#include "oit/capture/fragment_lists.hpp"
+#include "oit/reference/image_compare.hpp"
+#include "oit/reference/metrics.hpp"
+#include "oit/reference/reference.hpp"
+#include "oit/resolve/resolve_sort.hpp"
+#include "oit/scene/gpu_mesh.hpp"
+#include "oit/scene/scene.hpp"
 
 namespace oitbench {
 

@@ -1,5 +1,5 @@
 // oit: exact order-independent transparency (Knowles, Leach, Zambetta 2013 BMA and 2014 RBS;
-// micro/oit/exact_case.cpp) and approximate OIT (Brüll 2018; micro/oit/approx_case.cpp) on scenes kept
+// micro/oit/exact/exact_case.cpp) and approximate OIT (Brüll 2018; micro/oit/approx/approx_case.cpp) on scenes kept
 // as data (scenes/*.json). This file declares the parameter grid; the cases live in micro/oit/
 // so that `oitbench view` renders with the same code.
 #include <algorithm>
@@ -11,15 +11,15 @@
 #include <vector>
 
 #include "core/registry.hpp"
-#include "oit/approx.hpp"
-#include "oit/fragment_storage.hpp"
-#include "oit/metrics.hpp"
-#include "oit/moments.hpp"
+#include "oit/approx/approx.hpp"
+#include "oit/capture/fragment_storage.hpp"
+#include "oit/moments/moments.hpp"
 #include "oit/oit_case.hpp"
-#include "oit/peel.hpp"
-#include "oit/resolve_sort.hpp"
-#include "oit/scene.hpp"
-#include "oit/scene_passes.hpp"
+#include "oit/peel/peel.hpp"
+#include "oit/reference/metrics.hpp"
+#include "oit/resolve/resolve_sort.hpp"
+#include "oit/scene/scene.hpp"
+#include "oit/scene/scene_passes.hpp"
 #include "oit/techniques.hpp"
 
 namespace oitbench {
@@ -43,9 +43,10 @@ class OitExperiment final : public Experiment {
            "(PPLL) or packed per-pixel arrays (PPPA), resolved by "
            "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
            "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, "
-           "micro/oit/approx_case.cpp; MBOIT, Muenstermann 2018; STOCHASTIC, Enderton 2010, micro/oit/moments.hpp) "
+           "micro/oit/approx/approx_case.cpp; MBOIT, Muenstermann 2018; STOCHASTIC, Enderton 2010, "
+           "micro/oit/moments/moments.hpp) "
            "is validated against each technique's own CPU model, its error vs the exact image reported as data. "
-           "Depth peeling (Everitt 2001 DP, Bavoil & Myers 2008 DDP, micro/oit/peel_case.cpp) is exact when it "
+           "Depth peeling (Everitt 2001 DP, Bavoil & Myers 2008 DDP, micro/oit/peel/peel_case.cpp) is exact when it "
            "peels every layer, validated against a CPU model of the layers it peeled when max_layers stops it";
   }
   std::vector<ParamSpec> params() const override {
@@ -104,7 +105,7 @@ class OitExperiment final : public Experiment {
                       {"PPLL"},
                       {},
                       capture_storage_names()};
-    // The self-shadowing effect (micro/oit/shadow_map.hpp): read only where the scene declares it.
+    // The self-shadowing effect (micro/oit/scene/shadow_map.hpp): read only where the scene declares it.
     ParamSpec shadow_slices{"shadow_slices",
                             "self-shadowing: depth slices of the opacity shadow map (scenes whose effects hold "
                             "self-shadowing; others run no shadow pass)",
@@ -195,14 +196,14 @@ class OitExperiment final : public Experiment {
          "pixels off the geometric composite with the fragment format's quantisation by more than the tolerance"},
         {"ambiguous_pixels", T::Integer, "",
          "pixels left out of the geometric comparison: a plane edge, the near or the far plane at the pixel centre"},
-        // approximate techniques (micro/oit/approx_case.cpp)
+        // approximate techniques (micro/oit/approx/approx_case.cpp)
         {"model_rmse", T::Number, "", "rmse of the technique's CPU model against the exact reference"},
         {"model_max_diff", T::Number, "", "largest channel difference between the GPU image and the CPU model"},
         {"capped_updates", T::Integer, "", "insertions that gave up on the spinlock after SPIN_CAP tries"},
         {"flicker", T::Number, "", "per-pixel variance across flicker_runs frames, mean over pixels"},
         {"flicker_max", T::Number, "", "its largest pixel"},
         {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"},
-        // self-shadowing (micro/oit/shadow_map.cpp), only where the scene declares it
+        // self-shadowing (micro/oit/scene/shadow_map.cpp), only where the scene declares it
         {"shadow_rmse", T::Number, "",
          "self-shadowing: rmse of the opacity map's transmittance against the deep shadow map's (exact) at every "
          "fragment seen from the light"},
@@ -212,7 +213,7 @@ class OitExperiment final : public Experiment {
         {"shadow_light_fragments", T::Integer, "", "self-shadowing: fragments seen from the light"},
         {"shadow_map_bytes", T::Integer, "bytes",
          "self-shadowing: GPU memory of the map (3D texture) and of its primitive sort"},
-        // depth peeling (micro/oit/peel_case.cpp)
+        // depth peeling (micro/oit/peel/peel_case.cpp)
         {"layers_peeled", T::Integer, "", "DP, DDP: layers peeled in the deepest pixel"},
         {"peel_passes", T::Integer, "", "DP, DDP: geometry passes of one frame (two per iteration)"},
         {"peel_complete", T::Text, "",
@@ -220,7 +221,7 @@ class OitExperiment final : public Experiment {
         {"bytes_per_pixel", T::Number, "bytes",
          "the technique's per-pixel storage at this resolution (fragment pool, node arrays, accumulation and "
          "peeling targets; not the output image)"},
-        // MBOIT and STOCHASTIC (micro/oit/moments.hpp)
+        // MBOIT and STOCHASTIC (micro/oit/moments/moments.hpp)
         {"moment_bias", T::Number, "", "MBOIT: the moment bias used (the paper's value for the variant)"},
         {"moment_rebiased", T::Number, "",
          "MBOIT: fraction of fragments whose pixel's moments were inconsistent at that bias (rounded "

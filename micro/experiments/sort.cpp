@@ -17,8 +17,8 @@
 
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
-#include "oit/metrics.hpp"
-#include "oit/packed_fragment.hpp"
+#include "oit/capture/packed_fragment.hpp"
+#include "oit/reference/metrics.hpp"
 
 namespace oitbench {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
-#include "oit/storage_layout.hpp"
+#include "oit/storage/storage_layout.hpp"
 #include "shaders/spinlock/bindings.h"
 
 namespace oitbench {

@@ -12,8 +12,8 @@
 
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
-#include "oit/metrics.hpp"
-#include "oit/storage_layout.hpp"
+#include "oit/reference/metrics.hpp"
+#include "oit/storage/storage_layout.hpp"
 
 namespace oitbench {
 

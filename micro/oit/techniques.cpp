@@ -4,11 +4,11 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "oit/approx.hpp"
-#include "oit/fragment_storage.hpp"
-#include "oit/moments.hpp"
-#include "oit/peel.hpp"
-#include "oit/scene.hpp"
+#include "oit/approx/approx.hpp"
+#include "oit/capture/fragment_storage.hpp"
+#include "oit/moments/moments.hpp"
+#include "oit/peel/peel.hpp"
+#include "oit/scene/scene.hpp"
 
 namespace oitbench::oit {
 

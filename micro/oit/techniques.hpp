@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "oit/oit_case.hpp"
-#include "oit/resolve_sort.hpp"
+#include "oit/resolve/resolve_sort.hpp"
 
 namespace oitbench::oit {
 

@@ -3,12 +3,12 @@
 #include <array>
 
 #include "gl/gl.hpp"
-#include "oit/fragment_storage.hpp"
+#include "oit/capture/fragment_storage.hpp"
 
 namespace oitbench::viewer {
 
 namespace {
-// Beside the storage's own units and bindings (micro/oit/fragment_storage.hpp: images 0-3, atomic
+// Beside the storage's own units and bindings (micro/oit/capture/fragment_storage.hpp: images 0-3, atomic
 // counter 0, storage buffer 2).
 constexpr GLuint kDepthCountsUnit = 4, kDepthStatsBinding = 1;
 }  // namespace

@@ -4,7 +4,7 @@
 // near and far planes enclosing the scene's bounds.
 #include <glm/glm.hpp>
 
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 
 namespace oitbench::viewer {
 

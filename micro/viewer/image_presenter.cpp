@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "gl/gl.hpp"
-#include "oit/image_io.hpp"
+#include "oit/reference/image_io.hpp"
 
 namespace oitbench::viewer {
 

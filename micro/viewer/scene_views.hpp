@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 
 namespace oitbench::viewer {
 

@@ -19,9 +19,9 @@
 
 #include "core/presets.hpp"
 #include "core/runner.hpp"
-#include "oit/fragment_storage.hpp"
+#include "oit/capture/fragment_storage.hpp"
 #include "oit/oit_case.hpp"
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 #include "oit/techniques.hpp"
 #include "viewer/depth_complexity.hpp"
 #include "viewer/fly_camera.hpp"

@@ -8,7 +8,7 @@
 //   AT:     x = floatBitsToUint(T) ^ floatBitsToUint(1.0): empty = T 1
 //   LAAT:   the AT encoding with the low 5 mantissa bits replaced by the link (next slot + 1,
 //           0 = end of list); the extra slot STORAGE_NODES - 1 holds the head (first slot + 1)
-// The same encodings are mirrored on the CPU in micro/oit/approx_model.cpp (the techniques' own models).
+// The same encodings are mirrored on the CPU in micro/oit/approx/approx_model.cpp (the techniques' own models).
 #ifndef APPROX_NODES_GLSL
 #define APPROX_NODES_GLSL
 

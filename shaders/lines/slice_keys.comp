@@ -2,7 +2,7 @@
 // depth slice from its centre's view distance. Key 0 is the farthest slice, so sorting keys
 // ascending gives back-to-front order. Primitive i is the PRIMITIVE_VERTICES (2: a line segment,
 // the default and the lines experiment's; 3: a triangle, the self-shadowing map's,
-// micro/oit/shadow_map.cpp) indices at PRIMITIVE_VERTICES * i (Mesh::line_indices, Mesh::indices)
+// micro/oit/scene/shadow_map.cpp) indices at PRIMITIVE_VERTICES * i (Mesh::line_indices, Mesh::indices)
 // into the scene mesh's oit::Vertex records of VERTEX_FLOATS floats, the position first.
 #include "../common/oitbench.glsl"
 #ifndef PRIMITIVE_VERTICES

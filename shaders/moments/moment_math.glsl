@@ -1,6 +1,6 @@
 // Moment-based OIT (Münstermann, Krumpen, Klein, Peters 2018): the depth warp, the moments one
 // fragment adds, and the transmittance reconstructed from a pixel's moments at a depth. Written
-// once for both kinds of moments; micro/oit/moment_model.cpp is the same computation in double.
+// once for both kinds of moments; micro/oit/moments/moment_model.cpp is the same computation in double.
 //   MOMENT_COUNT  real numbers stored beside b0 (4, 6, 8): power moments b1..bn, or n/2 complex
 //                 trigonometric moments; both give a system of order M = MOMENT_COUNT / 2
 //   MOMENT_TRIGONOMETRIC  trigonometric moments (default: power)

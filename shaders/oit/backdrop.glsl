@@ -1,5 +1,5 @@
 // What lies behind the transparent layers, for every resolve and composite: the scene's constant
-// `background`, or with the opaque effect (OPAQUE_BACKDROP, micro/oit/scene_passes.cpp) the
+// `background`, or with the opaque effect (OPAQUE_BACKDROP, micro/oit/scene/scene_passes.cpp) the
 // opaque pass's colour at the pixel, the opaque objects drawn over the background.
 //   backdrop_colour(pixel)        the colour the transparent layers are composited over
 //   opaque_hides(pixel, depth)    whether the opaque surface at the pixel hides a fragment at this

@@ -1,4 +1,4 @@
-// Fragment capture: transforms the scene mesh (micro/oit/gpu_mesh.cpp's vertex layout); vWorld is
+// Fragment capture: transforms the scene mesh (micro/oit/scene/gpu_mesh.cpp's vertex layout); vWorld is
 // the world position the shading (shaders/oit/shade.glsl) needs.
 #include "../common/oitbench.glsl"
 layout(location = 0) in vec3 position;

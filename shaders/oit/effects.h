@@ -1,4 +1,4 @@
-// Texture units of the scene effects' resources (micro/oit/scene_passes.cpp binds them), read by
+// Texture units of the scene effects' resources (micro/oit/scene/scene_passes.cpp binds them), read by
 // every technique's shaders through shaders/oit/backdrop.glsl. Only #defines: valid C++ and GLSL.
 #ifndef OITBENCH_OIT_EFFECTS_H
 #define OITBENCH_OIT_EFFECTS_H

@@ -1,4 +1,4 @@
-// Exclusive prefix sum, one level of micro/oit/prefix_sum.cpp's scan: groups of 256 invocations,
+// Exclusive prefix sum, one level of micro/oit/capture/prefix_sum.cpp's scan: groups of 256 invocations,
 // each scanning SCAN_BLOCK = 1024 elements (4 per invocation, then a Hillis-Steele scan of the
 // invocations' sums in shared memory).
 //   SCAN_BLOCKS        scanOut[i] = the sum of the elements before i within its block, and

@@ -32,7 +32,7 @@ FRAG_T registers[RBS_M];
 #error "RBS_M must be at most 32"
 #endif
 
-// The block sort (the block_sort parameter, micro/oit/resolve_sort.hpp):
+// The block sort (the block_sort parameter, micro/oit/resolve/resolve_sort.hpp):
 //   (default)                    RS (register_sort.glsl), shrunk to the block's m fragments
 //   SORT_NETWORK_BITONIC,        a branchless register network (network.glsl) of RBS_M elements;
 //   SORT_NETWORK_ODD_EVEN_MERGE  a block of m < RBS_M is padded with FRAG_ZERO (depth 0, colour 0:

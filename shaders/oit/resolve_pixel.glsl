@@ -7,14 +7,14 @@
 //   SORT_IS:    insertion sort (sorts/insertion.glsl) in a local array of MAX_FRAGS
 //               (BASE-IS, BMA-IS, CS-IS)
 //   SORT_IMS:   insertion up to 32 fragments, merge sort above (sorts/merge.glsl, its
-//               SORT_MERGE_HALF_SCRATCH form, injected by micro/oit/resolve_sort.cpp)
+//               SORT_MERGE_HALF_SCRATCH form, injected by micro/oit/resolve/resolve_sort.cpp)
 //               (BASE-IMS, BMA-IMS, CS-IMS)
 //   SORT_RBS:   register-based block sort, blocks of RBS_M sorted by the RS network
 //               (sorts/register_sort.glsl), MAX_K blocks merged from local memory (rbs.glsl)
 //               (BASE-RBS-L, BMA-RBS-L, CS-RBS-L)
 //   SORT_RBS_G: the same blocks sorted in place in the list's nodes, merged from global memory
 //               (rbs.glsl) (RBS-G)
-// micro/oit/resolve_sort.cpp names the same files for the `sort_source` column.
+// micro/oit/resolve/resolve_sort.cpp names the same files for the `sort_source` column.
 // Expects: a storage include, `vec3 backdrop` (set per pixel from backdrop.glsl's backdrop_colour()).
 
 vec3 blend_over(vec3 c, FRAG_T frag) {
@@ -49,7 +49,7 @@ int frag_count;  // the pixel's fragments: a run-time loop bound, so the sorts w
 #define SORT_AT(i) frags[i]
 #include "../sorts/insertion.glsl"
 #if defined(SORT_IMS) && !defined(SORT_MERGE_HALF_SCRATCH)
-#error "IMS merges in Knowles 2013's form: inject SORT_MERGE_HALF_SCRATCH (micro/oit/resolve_sort.cpp)"
+#error "IMS merges in Knowles 2013's form: inject SORT_MERGE_HALF_SCRATCH (micro/oit/resolve/resolve_sort.cpp)"
 #endif
 #if defined(SORT_IMS) && MAX_FRAGS > 32
 #include "../sorts/merge.glsl"

@@ -1,4 +1,4 @@
-// Binding points of the depth peeling passes (micro/oit/peel_case.cpp, shaders/peel/). Only
+// Binding points of the depth peeling passes (micro/oit/peel/peel_case.cpp, shaders/peel/). Only
 // #defines: valid C++ and GLSL.
 #ifndef OITBENCH_PEEL_BINDINGS_H
 #define OITBENCH_PEEL_BINDINGS_H

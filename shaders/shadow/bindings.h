@@ -1,4 +1,4 @@
-// Binding points and constants of the self-shadowing opacity map (micro/oit/shadow_map.cpp), beside
+// Binding points and constants of the self-shadowing opacity map (micro/oit/scene/shadow_map.cpp), beside
 // the fragment storage's (image units 0-3) and the approximate techniques' (texture units 2-3).
 // Only #defines: valid C++ and GLSL.
 #ifndef OITBENCH_SHADOW_BINDINGS_H

@@ -1,4 +1,4 @@
-// The self-shadowing validation's capture from the light (micro/oit/shadow_map.cpp, untimed): every
+// The self-shadowing validation's capture from the light (micro/oit/scene/shadow_map.cpp, untimed): every
 // fragment the map pass rasterises, stored with its primitive's number (primitiveBase, where the
 // draw's primitive set starts, plus gl_PrimitiveID; 24 bits in the colour's r, g, b bytes) and its alpha byte in place of the colour, so that the CPU finds each fragment's
 // slice (the GPU's own slice key of its primitive) and rebuilds the map from the same slices.

@@ -1,5 +1,5 @@
 // The light's transmittance at a world position, read from the opacity shadow map that
-// micro/oit/shadow_map.cpp builds and binds (OpacityShadowMap::bind): the map's layers are the
+// micro/oit/scene/shadow_map.cpp builds and binds (OpacityShadowMap::bind): the map's layers are the
 // optical depth in front of each slice boundary, interpolated linearly between boundaries (and
 // bilinearly across texels) by the 3D texture's filter. Outside the light's frustum: fully lit.
 // The caller applies the ambient floor (shaders/oit/shade.glsl).

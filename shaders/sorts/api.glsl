@@ -45,7 +45,7 @@
 // (tests/unit/sort_library_test.cpp checks the whole shader tree); helpers elsewhere take other names.
 // A new sort: shaders/sorts/<name>.glsl defining sort_<name>() against this API; then select it
 // where it runs (shaders/sort/algorithms.glsl and the variant table in micro/experiments/sort.cpp;
-// shaders/oit/resolve_pixel.glsl and micro/oit/resolve_sort.cpp).
+// shaders/oit/resolve_pixel.glsl and micro/oit/resolve/resolve_sort.cpp).
 //
 // Including: the shader assembler (micro/gl/shader.cpp) emits a file once, at its first
 // #include, whatever #if surrounds it. Include this file unconditionally before any #if that

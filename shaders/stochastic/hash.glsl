@@ -1,7 +1,7 @@
 // Stochastic transparency's coverage (Enderton et al. 2010, section 3): a fragment of alpha a covers
 // k = floor(a S + u) of the S samples, u uniform in [0, 1), as a run of k consecutive samples rotated
 // by a random offset, so each sample is covered with probability a (integer arithmetic on the alpha
-// byte, so micro/oit/moment_model.cpp's stochastic_mask computes the same masks bit for bit).
+// byte, so micro/oit/moments/moment_model.cpp's stochastic_mask computes the same masks bit for bit).
 #ifndef STOCHASTIC_HASH_GLSL
 #define STOCHASTIC_HASH_GLSL
 

@@ -2,7 +2,7 @@
 // written once and its storage is one injected define (STORAGE_SSBO, STORAGE_TEXTURE3D,
 // STORAGE_INTERLEAVED, STORAGE_TEXBUFFER; see storage.glsl).
 //
-// Before including, define (the C++ side injects them: micro/oit/storage_layout.hpp):
+// Before including, define (the C++ side injects them: micro/oit/storage/storage_layout.hpp):
 //   STORAGE_WIDTH, STORAGE_HEIGHT  the screen in pixels
 //   STORAGE_NODES                  nodes per pixel (n)
 //   STORAGE_GROUP_X, STORAGE_GROUP_Y, STORAGE_ALIGN   interleaved only (Eq. 4.2 and its alignment)

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 
 namespace {
 constexpr unsigned long long kFuzzMeshBytes = 16ull << 20;

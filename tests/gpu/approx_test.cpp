@@ -1,7 +1,7 @@
 // oit's approximate techniques: every storage layout gives the technique's image, the validator
 // (the technique's own CPU model) fails on a wrong result and on the wrong model, interlock is
 // reported unsupported where the extension is missing, and flicker is measured across frames.
-#include "oit/approx.hpp"
+#include "oit/approx/approx.hpp"
 
 #include <filesystem>
 #include <set>

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <set>
 
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "oit/approx.hpp"
-#include "oit/image_compare.hpp"
-#include "oit/reference.hpp"
+#include "oit/approx/approx.hpp"
+#include "oit/reference/image_compare.hpp"
+#include "oit/reference/reference.hpp"
 #include "oit/techniques.hpp"
 #include "support/test_support.hpp"
 

@@ -1,8 +1,8 @@
-// oit's MBOIT and STOCHASTIC (micro/oit/moments.hpp): every variant matches its CPU model, each
+// oit's MBOIT and STOCHASTIC (micro/oit/moments/moments.hpp): every variant matches its CPU model, each
 // validator fails on a wrong result, the error is data that behaves as the papers say (more
 // moments, more samples: less error), STOCHASTIC is exact where alpha is 0 or 1 and flickers
 // across frames, and values the techniques do not define are usage errors (exit 2).
-#include "oit/moments.hpp"
+#include "oit/moments/moments.hpp"
 
 #include "support/test_support.hpp"
 

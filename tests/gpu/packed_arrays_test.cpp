@@ -1,4 +1,4 @@
-// PPPA, the packed per-pixel arrays capture (micro/oit/packed_arrays.hpp): the GPU prefix sum
+// PPPA, the packed per-pixel arrays capture (micro/oit/capture/packed_arrays.hpp): the GPU prefix sum
 // matches a CPU one across its block levels, the capture keeps every fragment in one go (sized by
 // the scan, never re-rendered), every resolve reads it through the same storage API and matches
 // the CPU reference, and the capture checks of both layouts fail when fragments are lost.
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gl/gl_objects.hpp"
-#include "oit/prefix_sum.hpp"
+#include "oit/capture/prefix_sum.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {

@@ -3,12 +3,12 @@
 // depth alone loses coplanar fragments and its validator says so; max_layers makes an approximation
 // validated against its CPU model, with less error for more layers; the fault makes every
 // validator fail; and every technique's row carries bytes_per_pixel.
-#include "oit/peel.hpp"
+#include "oit/peel/peel.hpp"
 
 #include <cmath>
 #include <string>
 
-#include "oit/approx.hpp"
+#include "oit/approx/approx.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/techniques.hpp"
 #include "support/test_support.hpp"

@@ -1,4 +1,4 @@
-// Self-shadowing (micro/oit/shadow_map.cpp) on the small hairball lit by a spot light
+// Self-shadowing (micro/oit/scene/shadow_map.cpp) on the small hairball lit by a spot light
 // (tests/data/shadow_hairball.json): the opacity map matches the CPU map of the same slices and its
 // primitive sort a stable CPU sort, a map drawn one slice off is caught, the map's error against the
 // deep shadow map falls as the slices grow (deterministic, so a correctness property), and the

@@ -25,7 +25,7 @@
 #include "core/runner.hpp"
 #include "core/timer.hpp"
 #include "experiments/experiments.hpp"
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 
 namespace oitbench {
 namespace {

@@ -1,12 +1,12 @@
-// The geometric reference of analytic scenes (micro/oit/geometric_reference.hpp) and the fragment
+// The geometric reference of analytic scenes (micro/oit/reference/geometric_reference.hpp) and the fragment
 // formats' CPU side: binary16 rounding, each format's quantisation, the tie rule, layers and edges.
-#include "oit/geometric_reference.hpp"
+#include "oit/reference/geometric_reference.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "oit/packed_fragment.hpp"
+#include "oit/capture/packed_fragment.hpp"
 
 namespace oitbench::oit {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 
 namespace oitbench::oit {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <bit>
 
-#include "oit/peel.hpp"
-#include "oit/reference.hpp"
+#include "oit/peel/peel.hpp"
+#include "oit/reference/reference.hpp"
 
 namespace oitbench::oit {
 namespace {

@@ -1,12 +1,12 @@
 // The CPU reference compositor and CPU-NATIVE on hand-made lists: order, "over", background,
 // tie-breaks, broken lists, and the comparison's tolerance.
-#include "oit/reference.hpp"
+#include "oit/reference/reference.hpp"
 
 #include <gtest/gtest.h>
 
 #include <bit>
 
-#include "oit/image_compare.hpp"
+#include "oit/reference/image_compare.hpp"
 
 namespace oitbench::oit {
 namespace {

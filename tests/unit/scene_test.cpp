@@ -1,6 +1,6 @@
 // Scene files: the shipped scenes load and generate what they promise; broken files give an error
 // naming the file, the line and column, and what was expected.
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The CPU side of the storage layouts: Eq. 4.1 and Eq. 4.2 as printed, and every layout a
 // bijection from (pixel, node) onto its allocation (no two nodes share a slot).
-#include "oit/storage_layout.hpp"
+#include "oit/storage/storage_layout.hpp"
 
 #include <gtest/gtest.h>
 

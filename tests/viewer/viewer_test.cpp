@@ -17,7 +17,7 @@
 #include <stb_image.h>
 #pragma GCC diagnostic pop
 
-#include "oit/scene.hpp"
+#include "oit/scene/scene.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {

@@ -1,6 +1,6 @@
 // Every captured fragment of every pixel, behind one small API, so the capture, the resolves and
 // the sorts never touch the layout (Knowles 2014, section 2.2). The host picks the layout with an
-// injected define (micro/oit/fragment_storage.hpp):
+// injected define (micro/oit/capture/fragment_storage.hpp):
 //   (default)     per-pixel linked lists, PPLL (storage/linked_list.glsl)
 //   STORAGE_PPPA  packed per-pixel arrays, PPPA: a count pass, a prefix sum, a fill pass
 //                 (storage/linearized.glsl)
@@ -19,7 +19,7 @@
 #ifndef OIT_STORAGE_FRAGMENTS
 #define OIT_STORAGE_FRAGMENTS
 
-// The fragment's format (micro/oit/fragment_storage.hpp, docs/precision.md), one define of each:
+// The fragment's format (micro/oit/capture/fragment_storage.hpp, docs/precision.md), one define of each:
 //   FRAG_COLOUR_RGBA8 (default)  FRAG_T uvec2 (packUnorm4x8 colour, depth bits): the papers' 64-bit node
 //   FRAG_COLOUR_RGBA16F          FRAG_T uvec3 (packHalf2x16 rg, depth bits, packHalf2x16 ba)
 //   FRAG_COLOUR_RGBA32F          FRAG_T FragRGBA32F (float bits of rgba, depth bits)
@@ -30,7 +30,7 @@
 //   frag_colour(f)       the stored colour as vec4
 //   frag_colour_greater(a, b)  equal depths' order: alpha, blue, green, red of the stored colour
 // Past GL_MAX_TEXTURE_BUFFER_SIZE texels the node arrays are split into FRAG_CHUNKS texel buffers
-// (micro/oit/fragment_storage.hpp, at most 4) of 2^FRAG_CHUNK_SHIFT texels: node i lives in chunk
+// (micro/oit/capture/fragment_storage.hpp, at most 4) of 2^FRAG_CHUNK_SHIFT texels: node i lives in chunk
 // i >> FRAG_CHUNK_SHIFT at offset i & (2^FRAG_CHUNK_SHIFT - 1). Chunk 0 keeps the layout's unit
 // (1, 2, 5); chunk c > 0 is on unit 8 + 3 (c - 1) + (0 colours, 1 next pointers, 2 depths). Without
 // FRAG_CHUNKS (one chunk) every access is the plain imageLoad/imageStore of before.

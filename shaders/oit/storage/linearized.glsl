@@ -1,6 +1,6 @@
 // Packed per-pixel arrays, PPPA (Knowles 2014 section 2.2; Maule et al.'s dynamic fragment
 // buffer): the layout of storage/fragments.glsl under STORAGE_PPPA (bindings:
-// micro/oit/packed_arrays.hpp). A capture is two passes of the geometry:
+// micro/oit/capture/packed_arrays.hpp). A capture is two passes of the geometry:
 //   STORAGE_PPPA_COUNT  counts each pixel's fragments (fragCounts)
 //   (host)              an exclusive prefix sum of the counts gives each pixel's first slot
 //                       (fragOffsets), and its total sizes the fragment buffer exactly

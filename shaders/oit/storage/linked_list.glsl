@@ -1,5 +1,5 @@
 // Per-pixel linked lists, PPLL (Yang et al. 2010), the default layout of storage/fragments.glsl
-// (bindings: micro/oit/fragment_lists.hpp): a global atomic counter allocates nodes, an atomic
+// (bindings: micro/oit/capture/fragment_lists.hpp): a global atomic counter allocates nodes, an atomic
 // exchange on the pixel's head pointer links them; next pointers live in a parallel buffer.
 #if !defined(STORAGE_PPPA) && !defined(OIT_STORAGE_LINKED_LIST)
 #define OIT_STORAGE_LINKED_LIST

@@ -1,0 +1,28 @@
+#pragma once
+// Approximate OIT (Brüll 2018, sections 2.3, 3.5-3.7, chapters 5 and 6): per-pixel arrays of n
+// nodes filled under a per-pixel spinlock (MLAB, UMLAB, AT, HAT, UAT, UHAT), weighted blended OIT
+// (McGuire & Bavoil 2013), plain unsorted blending and hybrid transparency (HT, Maule, Comba,
+// Torchelsen, Bastos 2013: a k-buffer core of the n nearest fragments, the tail averaged). This header is their
+// catalogue and the oit experiment's case for them (approx_case.cpp); each technique's CPU model, which a GPU image
+// must match to be valid, is in approx_model.hpp; the error against the exact reference, reported
+// as data, in image_compare.hpp.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/registry.hpp"
+#include "oit/capture/fragment_storage.hpp"
+#include "oit/oit_case.hpp"
+
+namespace oitbench::oit {
+
+// The technique table (techniques.hpp) names them; its entries carry the enumerator.
+enum class ApproxTechnique { Mlab, Umlab, Ht, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted };
+
+// The parameters the approximate techniques add to the oit experiment (ignored by the exact ones).
+std::vector<ParamSpec> approx_params();
+
+// The oit experiment's case for an approximate technique (parameters as in micro/experiments/oit.cpp).
+std::unique_ptr<OitCase> make_approx_case(const ParamSet& p, CaseContext& ctx);
+
+}  // namespace oitbench::oit

@@ -1,0 +1,430 @@
+// The oit experiment's case for the approximate techniques (approx.hpp): captures the view's
+// fragments once for the exact reference and the CPU model, then times the technique's own passes.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "gl/render_target.hpp"
+#include "oit/approx/approx.hpp"
+#include "oit/approx/approx_model.hpp"
+#include "oit/moments/moments.hpp"
+#include "oit/reference/geometric_reference.hpp"
+#include "oit/reference/image_compare.hpp"
+#include "oit/reference/image_io.hpp"
+#include "oit/reference/reference.hpp"
+#include "oit/scene/gpu_mesh.hpp"
+#include "oit/scene/scene.hpp"
+#include "oit/scene/scene_passes.hpp"
+#include "oit/storage/storage_layout.hpp"
+#include "oit/techniques.hpp"
+#include "shaders/approx/bindings.h"
+
+namespace oitbench::oit {
+
+namespace {
+
+// The GPU and its model differ by float rounding (fused multiply-adds, exp/log/pow), and MLAB's
+// RGBA8 nodes can round the other way at a half step and carry that through later merges.
+constexpr double kModelTolerance = 3.0 / 255.0;
+constexpr int kSpinCap = 1 << 16;
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+std::vector<ParamSpec> approx_params() {
+  using K = ParamSpec::Kind;
+  // Scoped to the techniques that read them by the technique table (micro/oit/techniques.cpp).
+  return {
+      {"nodes",
+       "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16); HT: its core's fragments",
+       {"8"},
+       {},
+       {},
+       K::Integer,
+       2,
+       64},
+      {"storage",
+       "node storage of the per-pixel array techniques (shaders/storage/)",
+       {"ssbo"},
+       {},
+       {"ssbo", "texture3d", "interleaved"}},
+      {"wboit_weight",
+       "WBOIT depth weight: none (weighted average), eq7 (view distance), eq10 (window depth)",
+       {"eq7"},
+       {},
+       {"none", "eq7", "eq10"}},
+      {"sync",
+       "per-pixel insertion: spinlock (Listing 4.3, capped) or interlock (ARB_fragment_shader_interlock)",
+       {"spinlock"},
+       {},
+       {"spinlock", "interlock"}},
+      {"guard",
+       "numeric guards of the AT family and WBOIT (off: the deliberately unguarded variant the hard-case "
+       "tests use)",
+       {"on"},
+       {},
+       {"on", "off"}},
+      {"flicker_runs",
+       "frames kept for the flicker metric (per-pixel variance across runs; 0: off)",
+       {"4"},
+       {},
+       {},
+       K::Integer,
+       0,
+       64},
+  };
+}
+namespace {
+
+class ApproxCase final : public OitCase {
+ public:
+  ApproxCase(const ParamSet& p, CaseContext& ctx)
+      : width_(ctx.width()),
+        height_(ctx.height()),
+        passes_(p, ctx),
+        scene_(passes_.scene()),
+        out_(ctx.width(), ctx.height(), GL_RGBA32F),
+        accum_(ctx.width(), ctx.height(), GL_RGBA32F),
+        flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
+        dump_(ctx.image_stem()) {
+    settings_.technique = static_cast<ApproxTechnique>(technique(p.get("technique")).variant);
+    settings_.nodes = static_cast<int>(p.get_int("nodes"));
+    settings_.weight = p.get("wboit_weight");
+    settings_.unguarded = p.get("guard") == "off";
+    using T = ApproxTechnique;
+    const T tech = settings_.technique;
+    arrays_ = tech != T::Wboit && tech != T::Unsorted;
+    ht_ = tech == T::Ht;
+    at_family_ = arrays_ && tech != T::Mlab && tech != T::Umlab && !ht_;
+    bool interlock = p.get("sync") == "interlock";
+    if (arrays_ && interlock && !ctx.gl().has_extension("GL_ARB_fragment_shader_interlock"))
+      throw Unsupported("sync=interlock needs GL_ARB_fragment_shader_interlock");
+
+    const View& view = passes_.view();
+    glm::mat4 vp = passes_.view_projection();
+    passes_.attach_opaque_depth(out_.framebuffer());
+    passes_.attach_opaque_depth(accum_.framebuffer());
+    // Analytic scenes: the truth from the scene's own planes (the capture keeps RGBA8 colours).
+    if (passes_.effects() == std::vector<std::string>{"transparency"})  // the geometry knows no other effect
+      geometry_ = geometric_reference(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full,
+                                      near_far(view, passes_.mesh()), width_, height_, FragColour::RGBA8);
+    // The planes back out of the perspective matrix (glm::perspective's layout).
+    glm::mat4 pm = vp * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
+    settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
+
+    // The fragments, once: the exact reference and every model work on these. With the opaque
+    // effect: every transparent fragment, hidden by the CPU against the opaque pass's depth (the
+    // reference does not trust the technique's own depth test).
+    passes_.draw_opaque();
+    backdrop_ = passes_.read_backdrop();
+    size_t pixels = static_cast<size_t>(width_) * height_;
+    lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
+    auto capture = build_capture_programs(
+        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+        passes_.geometry_defines());
+    for (const auto& prog : capture) {
+      set_view_proj(prog, vp);
+      passes_.bind_geometry(prog.get());
+    }
+    out_.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    lists_->capture(ids(capture), [&] { passes_.transparent().draw(); });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    host_ = visible_fragments(lists_->read_back(), backdrop_, hidden_);
+    lists_.reset();  // its pool is not needed for timing
+
+    Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
+    if (settings_.unguarded) d.push_back({"APPROX_UNGUARDED", ""});
+    if (interlock) d.push_back({"SYNC_INTERLOCK", ""});
+    for (auto& x : passes_.geometry_defines()) d.push_back(x);
+    if (arrays_) {
+      std::string storage = p.get("storage");
+      layout_ = StorageLayout::parse(storage == "interleaved" ? "interleaved-4x4-a4" : storage);
+      // LAAT keeps its list head in one more slot per pixel.
+      int slots = settings_.nodes + (tech == T::Laat ? 1 : 0);
+      if (layout_.kind == StorageLayout::Kind::Interleaved && slots % layout_.align) layout_.align = 1;
+      for (const auto& x : layout_.defines(width_, height_, slots)) d.push_back(x);
+      storage_ = std::make_unique<StorageResources>(layout_, width_, height_, slots);
+      locks_ = gl::make_texture(GL_TEXTURE_2D);
+      glTextureStorage2D(locks_.get(), 1, GL_R32UI, width_, height_);
+      stats_ = gl::make_buffer();
+      glNamedBufferStorage(stats_.get(), sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
+      insert_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/insert.frag"}}, d);
+      set_view_proj(insert_, vp);
+      if (at_family_ || ht_) {
+        const char* pass2 = ht_ ? "approx/ht_tail.frag" : "approx/at_blend.frag";
+        blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, pass2}}, d);
+        set_view_proj(blend_, vp);
+      }
+      if (ht_) {  // the tail's fragment count beside its sums
+        reveal_ = gl::make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(reveal_.get(), 1, GL_R32F, width_, height_);
+        glNamedFramebufferTexture(accum_.framebuffer(), GL_COLOR_ATTACHMENT1, reveal_.get(), 0);
+      }
+      bytes_per_pixel_ = slots * 8.0 + 4.0 + (at_family_ || ht_ ? 16.0 : 0.0) + (ht_ ? 4.0 : 0.0);
+      resolve_ =
+          ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/resolve.frag"}}, d);
+    } else if (tech == T::Wboit) {
+      d.push_back({"WEIGHT_" + upper(settings_.weight), ""});
+      blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_accum.frag"}}, d);
+      set_view_proj(blend_, vp);
+      glProgramUniform2f(blend_.get(), glGetUniformLocation(blend_.get(), "nearFar"), settings_.near_far.x,
+                         settings_.near_far.y);
+      reveal_ = gl::make_texture(GL_TEXTURE_2D);
+      glTextureStorage2D(reveal_.get(), 1, GL_R32F, width_, height_);
+      glNamedFramebufferTexture(accum_.framebuffer(), GL_COLOR_ATTACHMENT1, reveal_.get(), 0);
+      resolve_ = ctx.build(
+          {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
+      bytes_per_pixel_ = 16.0 + 4.0;
+    } else {
+      blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
+      set_view_proj(blend_, vp);
+    }
+  }
+
+  GLuint opaque_texture() const override { return passes_.opaque_texture(); }
+  std::map<std::string, std::string> resolved_params() const override { return passes_.resolved_params(); }
+  void set_view_projection(const glm::mat4& view_proj) override {
+    passes_.set_view_projection(view_proj);
+    for (const gl::Program* prog : {&insert_, &blend_})
+      if (*prog) set_view_proj(*prog, view_proj);
+  }
+  GLuint result_texture() override { return out_.color_texture(); }
+  unsigned max_frags() const override { return arrays_ ? static_cast<unsigned>(settings_.nodes) : 0; }
+
+  void run(PassTimer& timer) override {
+    using T = ApproxTechnique;
+    passes_.run_before(timer);
+    for (const gl::Program* prog : {&insert_, &blend_})
+      if (*prog) passes_.bind_geometry(prog->get());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    if (!passes_.transparency()) {  // nothing transparent: the image is the backdrop
+      passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
+    } else if (arrays_) {
+      {
+        auto t = timer.pass("insert");
+        storage_->clear();
+        glClearTexImage(locks_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        out_.bind();
+        glDisable(GL_BLEND);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        storage_->bind();
+        glBindImageTexture(APPROX_LOCK_IMAGE_UNIT, locks_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, APPROX_STATS_BINDING, stats_.get());
+        glUseProgram(insert_.get());
+        passes_.begin_geometry();
+        passes_.transparent().draw();
+        passes_.end_geometry();
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        StorageResources::barrier();
+      }
+      if (at_family_ || ht_) {
+        auto t = timer.pass(ht_ ? "tail" : "blend");
+        accum_.bind();
+        const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(accum_.framebuffer(), ht_ ? 2 : 1, bufs);
+        const float zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 0, zero);
+        if (ht_) glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 1, zero);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glUseProgram(blend_.get());
+        passes_.begin_geometry();
+        passes_.transparent().draw();
+        passes_.end_geometry();
+        glDisable(GL_BLEND);
+      }
+      auto t = timer.pass("resolve");
+      out_.bind();
+      glBindTextureUnit(APPROX_ACCUM_UNIT, accum_.color_texture());
+      passes_.bind_backdrop(resolve_.get());
+      if (ht_) glBindTextureUnit(APPROX_REVEAL_UNIT, reveal_.get());
+      glUseProgram(resolve_.get());
+      quad_.draw();
+    } else if (settings_.technique == T::Wboit) {
+      {
+        auto t = timer.pass("accumulate");
+        accum_.bind();
+        const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(accum_.framebuffer(), 2, bufs);
+        const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
+        glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 1, one);
+        glEnable(GL_BLEND);
+        glBlendFunci(0, GL_ONE, GL_ONE);
+        glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+        glUseProgram(blend_.get());
+        passes_.begin_geometry();
+        passes_.transparent().draw();
+        passes_.end_geometry();
+        glDisable(GL_BLEND);
+      }
+      auto t = timer.pass("resolve");
+      out_.bind();
+      glBindTextureUnit(APPROX_ACCUM_UNIT, accum_.color_texture());
+      glBindTextureUnit(APPROX_REVEAL_UNIT, reveal_.get());
+      passes_.bind_backdrop(resolve_.get());
+      glUseProgram(resolve_.get());
+      quad_.draw();
+    } else {
+      auto t = timer.pass("blend");
+      out_.bind();
+      passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
+      glEnable(GL_BLEND);
+      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+      glUseProgram(blend_.get());
+      passes_.begin_geometry();
+      passes_.transparent().draw();
+      passes_.end_geometry();
+      glDisable(GL_BLEND);
+    }
+    // Outside the timed passes: the frames the flicker metric compares.
+    if (flicker_runs_ > 0) {
+      frames_.push_back(rgb_of(out_.read_rgba32f()));
+      if (static_cast<int>(frames_.size()) > flicker_runs_) frames_.erase(frames_.begin());
+    }
+  }
+
+  Validation validate() override {
+    Validation v;
+    auto& m = v.metrics;
+    std::vector<float> rgb = rgb_of(out_.read_rgba32f());
+    ListStats stats = list_stats(host_);
+    auto ref = composite_reference(host_, backdrop_);
+    ApproxModel model = approx_model(host_, backdrop_, settings_);
+    if (passes_.opaque()) m["hidden_fragments"] = std::to_string(hidden_);
+    ApproxError err = approx_error(rgb, ref);
+    m["total_fragments"] = std::to_string(stats.total_fragments);
+    m["peak_depth"] = std::to_string(stats.peak_depth);
+    m["mean_depth"] = fmt(stats.mean_depth);
+    m["polygons"] = std::to_string(passes_.mesh().polygons());
+    m["rmse"] = fmt(err.rmse);
+    m["psnr"] = fmt(err.psnr);
+    m["max_abs_error"] = fmt(err.max_abs_error);
+    m["frac_pixels_off"] = fmt(err.frac_pixels_off);
+    m["bytes_per_pixel"] = fmt(bytes_per_pixel_);
+    m["model_rmse"] = fmt(approx_error(model.rgb, std::vector<double>(ref.begin(), ref.end())).rmse);
+
+    size_t nonfinite = 0, out_of_range = 0, model_off = 0;
+    double model_max = 0;
+    std::string first_off;
+    for (size_t i = 0; i < rgb.size(); ++i) {
+      if (!std::isfinite(rgb[i]))
+        ++nonfinite;
+      else if (rgb[i] < -1.0 / 255.0 || rgb[i] > 1.0 + 2.0 / 255.0)
+        ++out_of_range;
+      double d = std::abs(static_cast<double>(rgb[i]) - model.rgb[i]);
+      if (!std::isfinite(d) && std::isfinite(rgb[i]) != std::isfinite(model.rgb[i])) d = 1.0;
+      if (!std::isfinite(d)) d = 0.0;  // both non-finite: the model predicts the failure
+      model_max = std::max(model_max, d);
+      if (d > kModelTolerance && model_off++ == 0) {
+        size_t px = i / 3;
+        first_off = "pixel (" + std::to_string(px % width_) + "," + std::to_string(px / width_) + ") channel " +
+                    std::to_string(i % 3) + ": GPU " + fmt(rgb[i]) + ", model " + fmt(model.rgb[i]);
+      }
+    }
+    m["nonfinite"] = std::to_string(nonfinite);
+    m["out_of_range_pixels"] = std::to_string(image_range(rgb, 3).out_of_range_pixels);
+    if (geometry_) {
+      std::vector<float> rgba(rgb.size() / 3 * 4, 1.0f);  // as the geometric check reads an image
+      for (size_t i = 0; i < rgb.size() / 3; ++i)
+        for (int k = 0; k < 3; ++k) rgba[i * 4 + k] = rgb[i * 3 + k];
+      GeometricCheck g = check_against_geometry(*geometry_, rgba, {}, scene_.background, 1.0);
+      m["truth_rmse"] = fmt(g.truth_rmse);
+      m["truth_max_abs_error"] = fmt(g.truth_max_abs_error);
+    }
+    m["model_max_diff"] = fmt(model_max);
+    unsigned capped = 0;
+    if (arrays_) {
+      glGetNamedBufferSubData(stats_.get(), 0, sizeof(unsigned), &capped);
+      m["capped_updates"] = std::to_string(capped);
+    }
+    if (frames_.size() >= 2) {
+      Flicker f = flicker_of(frames_);
+      m["flicker"] = fmt(f.mean);
+      m["flicker_max"] = fmt(f.peak);
+      m["flicker_pixels"] = std::to_string(f.changed);
+    }
+    if (!dump_.empty()) write_result_images(dump_, rgb, std::vector<double>(ref.begin(), ref.end()), width_, height_);
+
+    std::vector<std::string> problems;
+    if (!stats.error.empty()) problems.push_back(stats.error);
+    if (nonfinite) problems.push_back(std::to_string(nonfinite) + " non-finite channel value(s) (NaN or Inf)");
+    if (out_of_range) problems.push_back(std::to_string(out_of_range) + " channel value(s) outside [0, 1]");
+    if (capped) problems.push_back(std::to_string(capped) + " insertion(s) gave up on the spinlock (lost)");
+    if (model_off)
+      problems.push_back(std::to_string(model_off) +
+                         " channel value(s) differ from the technique's CPU model by more "
+                         "than 3/255; first: " +
+                         first_off);
+    {
+      auto shadow = passes_.validate_shadow();
+      m.insert(shadow.metrics.begin(), shadow.metrics.end());
+      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
+    }
+    v.valid = problems.empty();
+    for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
+    return v;
+  }
+
+ private:
+  // The colour behind the transparent layers: one place, for the scene effects to replace.
+  static std::string upper(std::string s) {
+    for (auto& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    return s;
+  }
+  static void set_view_proj(const gl::Program& prog, const glm::mat4& vp) {
+    glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE, &vp[0][0]);
+  }
+  static std::vector<float> rgb_of(const std::vector<float>& rgba) {
+    std::vector<float> rgb(rgba.size() / 4 * 3);
+    for (size_t p = 0; p < rgba.size() / 4; ++p)
+      for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = rgba[p * 4 + k];
+    return rgb;
+  }
+
+  int width_, height_;
+  ScenePasses passes_;
+  const SceneDesc& scene_;
+  std::optional<GeometricReference> geometry_;
+  RenderTarget out_, accum_;
+  FullscreenTriangle quad_;
+  Backdrop backdrop_;
+  size_t hidden_ = 0;
+  std::unique_ptr<FragmentStorage> lists_;
+  HostLists host_;
+  ApproxSettings settings_;
+  bool arrays_ = false, at_family_ = false, ht_ = false;
+  double bytes_per_pixel_ = 0;
+  StorageLayout layout_;
+  std::unique_ptr<StorageResources> storage_;
+  gl::Texture locks_, reveal_;
+  gl::Buffer stats_;
+  gl::Program insert_, blend_, resolve_;
+  int flicker_runs_;
+  std::string dump_;
+  std::vector<std::vector<float>> frames_;
+};
+
+}  // namespace
+
+std::unique_ptr<OitCase> make_approx_case(const ParamSet& p, CaseContext& ctx) {
+  return std::make_unique<ApproxCase>(p, ctx);
+}
+
+}  // namespace oitbench::oit

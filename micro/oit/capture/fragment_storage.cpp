@@ -1,0 +1,208 @@
+#include "oit/capture/fragment_storage.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "oit/capture/fragment_lists.hpp"
+#include "oit/capture/packed_arrays.hpp"
+#include "oit/capture/packed_fragment.hpp"
+
+namespace oitbench::oit {
+
+const std::vector<std::string>& capture_storage_names() {
+  static const std::vector<std::string> names = {"PPLL", "PPPA"};
+  return names;
+}
+
+CaptureStorage parse_capture_storage(const std::string& name) {
+  if (name == "PPLL") return CaptureStorage::PPLL;
+  if (name == "PPPA") return CaptureStorage::PPPA;
+  throw std::invalid_argument("unknown capture storage '" + name + "' (PPLL, PPPA)");
+}
+
+const std::vector<std::string>& frag_colour_names() {
+  static const std::vector<std::string> names = {"rgba8", "rgba16f", "rgba32f"};
+  return names;
+}
+
+const std::vector<std::string>& frag_depth_names() {
+  static const std::vector<std::string> names = {"window", "view"};
+  return names;
+}
+
+FragFormat parse_frag_format(const std::string& colour, const std::string& depth) {
+  FragFormat f;
+  if (colour == "rgba8")
+    f.colour = FragColour::RGBA8;
+  else if (colour == "rgba16f")
+    f.colour = FragColour::RGBA16F;
+  else if (colour == "rgba32f")
+    f.colour = FragColour::RGBA32F;
+  else
+    throw std::invalid_argument("unknown fragment colour format '" + colour + "' (rgba8, rgba16f, rgba32f)");
+  if (depth == "window")
+    f.depth = FragDepth::Window;
+  else if (depth == "view")
+    f.depth = FragDepth::View;
+  else
+    throw std::invalid_argument("unknown fragment depth format '" + depth + "' (window, view)");
+  return f;
+}
+
+Defines frag_format_defines(FragFormat f) {
+  const char* c = f.colour == FragColour::RGBA8     ? "FRAG_COLOUR_RGBA8"
+                  : f.colour == FragColour::RGBA16F ? "FRAG_COLOUR_RGBA16F"
+                                                    : "FRAG_COLOUR_RGBA32F";
+  return {{c, ""}, {f.depth == FragDepth::View ? "FRAG_DEPTH_VIEW" : "FRAG_DEPTH_WINDOW", ""}};
+}
+
+size_t frag_node_bytes(FragColour c) { return c == FragColour::RGBA8 ? 8 : c == FragColour::RGBA16F ? 12 : 20; }
+
+glm::dvec4 node_colour(const HostLists& h, size_t n) {
+  if (h.colour == FragColour::RGBA8) {
+    unsigned c = h.nodes[n].x;
+    return {(c & 0xffu) / 255.0, ((c >> 8) & 0xffu) / 255.0, ((c >> 16) & 0xffu) / 255.0, (c >> 24) / 255.0};
+  }
+  const glm::uvec4& w = h.wide[n];
+  if (h.colour == FragColour::RGBA16F)
+    return {half_to_float(static_cast<uint16_t>(w.x & 0xffffu)), half_to_float(static_cast<uint16_t>(w.x >> 16)),
+            half_to_float(static_cast<uint16_t>(w.y & 0xffffu)), half_to_float(static_cast<uint16_t>(w.y >> 16))};
+  return {std::bit_cast<float>(w.x), std::bit_cast<float>(w.y), std::bit_cast<float>(w.z), std::bit_cast<float>(w.w)};
+}
+
+std::array<unsigned, 4> node_tie_key(const HostLists& h, size_t n) {
+  if (h.colour == FragColour::RGBA8) return {h.nodes[n].x, 0, 0, 0};
+  const glm::uvec4& w = h.wide[n];
+  if (h.colour == FragColour::RGBA16F) return {w.y, w.x, 0, 0};  // (a, b) then (g, r): the high half first
+  return {w.w, w.z, w.y, w.x};
+}
+
+NodePool::NodePool(size_t pool, FragColour colour, const std::string& what, size_t min_chunks) : colour_(colour) {
+  if (colour == FragColour::RGBA8) {
+    colours_ = ChunkedTexels(pool, GL_RG32UI, 8, what, min_chunks);
+    return;
+  }
+  colours_ = colour == FragColour::RGBA16F ? ChunkedTexels(pool, GL_RG32UI, 8, what, min_chunks)
+                                           : ChunkedTexels(pool, GL_RGBA32UI, 16, what, min_chunks);
+  depths_ = ChunkedTexels(pool, GL_R32UI, 4, what, min_chunks);
+}
+
+void NodePool::bind() const {
+  colours_.bind(kNodesUnit, ChunkSlot::Colours);
+  if (colour_ != FragColour::RGBA8) depths_.bind(kNodeDepthUnit, ChunkSlot::Depths);
+}
+
+void NodePool::read(size_t n, HostLists& h) const {
+  h.colour = colour_;
+  h.nodes.assign(n, glm::uvec2(0));
+  if (!n) return;
+  if (colour_ == FragColour::RGBA8) {
+    colours_.read(n, h.nodes.data());
+    return;
+  }
+  std::vector<unsigned> depth(n);
+  depths_.read(n, depth.data());
+  h.wide.assign(n, glm::uvec4(0));
+  if (colour_ == FragColour::RGBA32F) {
+    colours_.read(n, h.wide.data());
+  } else {
+    std::vector<glm::uvec2> c(n);
+    colours_.read(n, c.data());
+    for (size_t i = 0; i < n; ++i) h.wide[i] = glm::uvec4(c[i], 0u, 0u);
+  }
+  for (size_t i = 0; i < n; ++i) h.nodes[i].y = depth[i];
+}
+
+size_t max_chunk_texels() {
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  size_t limit = static_cast<size_t>(std::max(max_texels, 1));
+  // OITBENCH_MAX_TEXEL_BUFFER lowers the limit, so the tests run the chunked path on small images.
+  if (const char* env = std::getenv("OITBENCH_MAX_TEXEL_BUFFER"); env && *env) {
+    char* end = nullptr;
+    unsigned long long v = std::strtoull(env, &end, 10);
+    if (*end || v == 0)
+      throw std::invalid_argument(std::string("OITBENCH_MAX_TEXEL_BUFFER='") + env +
+                                  "' is not a positive number of texels");
+    limit = std::min<size_t>(limit, v);
+  }
+  return std::bit_floor(limit);
+}
+
+size_t chunks_for(size_t texels) {
+  size_t chunk = max_chunk_texels();
+  return std::max<size_t>(1, (texels + chunk - 1) / chunk);
+}
+
+GLuint chunk_unit(GLuint first_unit, ChunkSlot slot, size_t chunk) {
+  if (chunk == 0) return first_unit;
+  return 8 + static_cast<GLuint>((chunk - 1) * 3) + static_cast<GLuint>(slot);
+}
+
+Defines chunk_defines(size_t chunks, unsigned shift) {
+  if (chunks <= 1) return {};
+  return {{"FRAG_CHUNKS", std::to_string(chunks)}, {"FRAG_CHUNK_SHIFT", std::to_string(shift)}};
+}
+
+ChunkedTexels::ChunkedTexels(size_t texels, GLenum format, size_t texel_bytes, const std::string& what,
+                             size_t min_chunks)
+    : format_(format), texel_bytes_(texel_bytes) {
+  const size_t chunk = max_chunk_texels();
+  shift_ = static_cast<unsigned>(std::countr_zero(chunk));
+  const size_t chunks = std::max(chunks_for(texels), min_chunks);
+  if (chunks > kMaxChunks)
+    throw Unsupported(what + " of " + std::to_string(texels) + " fragments needs " + std::to_string(chunks) +
+                      " texel buffers of GL_MAX_TEXTURE_BUFFER_SIZE (" + std::to_string(chunk) +
+                      " texels); the storage binds at most " + std::to_string(kMaxChunks));
+  for (size_t c = 0; c < chunks; ++c) {
+    size_t first = c * chunk;
+    size_t n = first < texels ? std::min(chunk, texels - first) : 1;  // a chunk kept for min_chunks: one texel
+    buffers_.push_back(gl::make_buffer());
+    views_.push_back(gl::make_texture(GL_TEXTURE_BUFFER));
+    glNamedBufferStorage(buffers_.back().get(), static_cast<GLsizeiptr>(n * texel_bytes), nullptr, 0);
+    glTextureBuffer(views_.back().get(), format, buffers_.back().get());
+  }
+}
+
+void ChunkedTexels::bind(GLuint first_unit, ChunkSlot slot) const {
+  for (size_t c = 0; c < views_.size(); ++c)
+    glBindImageTexture(chunk_unit(first_unit, slot, c), views_[c].get(), 0, GL_FALSE, 0, GL_READ_WRITE, format_);
+}
+
+void ChunkedTexels::read(size_t n, void* out) const {
+  auto* dst = static_cast<char*>(out);
+  const size_t chunk = size_t{1} << shift_;
+  for (size_t c = 0; c < buffers_.size() && c * chunk < n; ++c) {
+    size_t count = std::min(chunk, n - c * chunk);
+    glGetNamedBufferSubData(buffers_[c].get(), 0, static_cast<GLsizeiptr>(count * texel_bytes_),
+                            dst + c * chunk * texel_bytes_);
+  }
+}
+
+std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,
+                                                       bool with_counts, FragFormat format) {
+  if (kind == CaptureStorage::PPPA) return std::make_unique<PackedArrays>(ctx, initial_pool, format);
+  return std::make_unique<FragmentLists>(ctx.width(), ctx.height(), initial_pool, with_counts, format);
+}
+
+std::vector<gl::Program> build_capture_programs(const FragmentStorage& storage, const CaseContext& ctx,
+                                                const std::vector<ShaderStage>& stages, const Defines& extra) {
+  std::vector<gl::Program> programs;
+  for (const Defines& pass : storage.capture_passes()) {
+    Defines d = storage.defines();
+    d.insert(d.end(), pass.begin(), pass.end());
+    d.insert(d.end(), extra.begin(), extra.end());
+    programs.push_back(ctx.build(stages, d));
+  }
+  return programs;
+}
+
+std::vector<GLuint> ids(const std::vector<gl::Program>& programs) {
+  std::vector<GLuint> out;
+  for (const auto& p : programs) out.push_back(p.get());
+  return out;
+}
+
+}  // namespace oitbench::oit

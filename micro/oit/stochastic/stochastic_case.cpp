@@ -1,0 +1,300 @@
+// The oit experiment's STOCHASTIC case (moments.hpp): stochastic transparency with
+// samples_per_pixel coverage samples, validated against stochastic_model (moment_model.hpp), which
+// draws the same masks from the same hash for the fragments' recorded MSAA coverage.
+#include <algorithm>
+#include <bit>
+#include <sstream>
+
+#include "gl/render_target.hpp"
+#include "oit/moments/moment_model.hpp"
+#include "oit/moments/moments.hpp"
+#include "oit/reference/image_compare.hpp"
+#include "oit/reference/image_io.hpp"
+#include "oit/reference/reference.hpp"
+#include "shaders/stochastic/bindings.h"
+
+namespace oitbench::oit {
+
+namespace {
+
+// The GPU sums each sample in float where the model sums in double: far below 1/255.
+constexpr double kStochasticTolerance = 2.0 / 255.0;
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+std::vector<float> rgb_of(const std::vector<float>& rgba) {
+  std::vector<float> rgb(rgba.size() / 4 * 3);
+  for (size_t p = 0; p < rgba.size() / 4; ++p)
+    for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = rgba[p * 4 + k];
+  return rgb;
+}
+void set_view_proj(const gl::Program& prog, const glm::mat4& vp) {
+  glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE, &vp[0][0]);
+}
+std::vector<GLint> sample_counts(GLenum format) {
+  GLint n = 0;
+  glGetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, format, GL_NUM_SAMPLE_COUNTS, 1, &n);
+  std::vector<GLint> counts(static_cast<size_t>(std::max(n, 0)));
+  if (n > 0) glGetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, format, GL_SAMPLES, n, counts.data());
+  return counts;
+}
+
+class StochasticCase final : public OitCase {
+ public:
+  StochasticCase(const ParamSet& p, CaseContext& ctx)
+      : width_(ctx.width()),
+        height_(ctx.height()),
+        run_seed_(ctx.seed()),
+        view_(capture_view(p, ctx)),
+        out_(ctx.width(), ctx.height(), GL_RGBA32F),
+        total_(ctx.width(), ctx.height(), GL_R32F),
+        flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
+        dump_(ctx.image_stem()) {
+    const int samples = static_cast<int>(p.get_int("samples_per_pixel"));
+    // The most MSAA samples the driver renders RGBA32F and 32-bit float depth with that divide the
+    // count; the rest comes from further passes (Enderton et al.: more passes, more samples).
+    auto colour = sample_counts(GL_RGBA32F), depth = sample_counts(GL_DEPTH_COMPONENT32F);
+    int best = 0;
+    for (GLint c : colour)
+      if (c >= 2 && c <= samples && samples % c == 0 && std::find(depth.begin(), depth.end(), c) != depth.end())
+        best = std::max(best, static_cast<int>(c));
+    if (best == 0)
+      throw Unsupported(
+          "STOCHASTIC needs multisampled RGBA32F and DEPTH_COMPONENT32F textures with a sample count "
+          "dividing " +
+          std::to_string(samples) + "; the driver has none");
+    setup_ = {width_, height_, best, samples / best, 0};
+
+    colour_ = gl::make_texture(GL_TEXTURE_2D_MULTISAMPLE);
+    glTextureStorage2DMultisample(colour_.get(), best, GL_RGBA32F, width_, height_, GL_TRUE);
+    depth_ = gl::make_texture(GL_TEXTURE_2D_MULTISAMPLE);
+    glTextureStorage2DMultisample(depth_.get(), best, GL_DEPTH_COMPONENT32F, width_, height_, GL_TRUE);
+    msaa_ = gl::make_framebuffer();
+    glNamedFramebufferTexture(msaa_.get(), GL_COLOR_ATTACHMENT0, colour_.get(), 0);
+    glNamedFramebufferTexture(msaa_.get(), GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    if (glCheckNamedFramebufferStatus(msaa_.get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw Unsupported("STOCHASTIC: the " + std::to_string(best) + "x MSAA framebuffer is incomplete on this driver");
+    bytes_ = best * (16 + 4) + 4;
+
+    Defines d = view_.fx->geometry_defines();
+    for (auto& x : view_.fx->depth_sampler_defines()) d.push_back(x);
+    d.push_back({"MSAA_SAMPLES", std::to_string(best)});
+    d.push_back({"STOCHASTIC_PASSES", std::to_string(setup_.passes)});
+    const std::string vert = "oit/capture.vert";
+    coverage_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/coverage.frag"}}, d);
+    depth_pass_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/depth.frag"}}, d);
+    accumulate_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/accumulate.frag"}}, d);
+    alpha_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/alpha.frag"}}, d);
+    resolve_ =
+        ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "stochastic/resolve.frag"}}, d);
+    set_view_projection(view_.view_proj);
+    record_coverage();
+  }
+
+  void set_view_projection(const glm::mat4& view_proj) override {
+    view_.fx->set_view_projection(view_proj);
+    for (const gl::Program* prog : {&coverage_, &depth_pass_, &accumulate_, &alpha_}) set_view_proj(*prog, view_proj);
+  }
+  GLuint result_texture() override { return out_.color_texture(); }
+  GLuint opaque_texture() const override { return view_.fx->opaque_texture(); }
+  std::map<std::string, std::string> resolved_params() const override { return view_.fx->resolved_params(); }
+
+  void run(PassTimer& timer) override {
+    view_.fx->run_before(timer);
+    if (!view_.fx->transparency()) {  // nothing transparent: the image is the backdrop
+      view_.fx->fill_with_backdrop(out_.framebuffer(), out_.color_texture());
+      return;
+    }
+    for (const gl::Program* prog : {&depth_pass_, &accumulate_, &alpha_}) view_.fx->bind_geometry(prog->get());
+    view_.fx->bind_opaque_depth_sampler();
+    setup_.frame_seed = stochastic_frame_seed(run_seed_, frame_++);
+    glDisable(GL_CULL_FACE);
+    {
+      auto t = timer.pass("stochastic");
+      glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
+      glViewport(0, 0, width_, height_);
+      glEnable(GL_MULTISAMPLE);
+      const float zero[4] = {0, 0, 0, 0};
+      glClearNamedFramebufferfv(msaa_.get(), GL_COLOR, 0, zero);
+      glEnable(GL_DEPTH_TEST);
+      glProgramUniform1ui(depth_pass_.get(), glGetUniformLocation(depth_pass_.get(), "frameSeed"), setup_.frame_seed);
+      for (int pass = 0; pass < setup_.passes; ++pass) {
+        const float far_depth = 1.0f;
+        glDepthMask(GL_TRUE);  // before the clear, which the depth write mask also masks
+        glClearNamedFramebufferfv(msaa_.get(), GL_DEPTH, 0, &far_depth);
+        glDepthFunc(GL_LESS);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glDisable(GL_BLEND);
+        glProgramUniform1ui(depth_pass_.get(), glGetUniformLocation(depth_pass_.get(), "passIndex"),
+                            static_cast<GLuint>(pass));
+        glUseProgram(depth_pass_.get());
+        view_.mesh->draw();
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthMask(GL_FALSE);
+        glDepthFunc(GL_LEQUAL);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glUseProgram(accumulate_.get());
+        view_.mesh->draw();
+      }
+      glDepthMask(GL_TRUE);
+      glDepthFunc(GL_LESS);
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_BLEND);
+    }
+    {
+      auto t = timer.pass("alpha");
+      total_.bind();
+      const float one[4] = {1, 1, 1, 1};
+      glClearNamedFramebufferfv(total_.framebuffer(), GL_COLOR, 0, one);
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+      glUseProgram(alpha_.get());
+      view_.mesh->draw();
+      glDisable(GL_BLEND);
+    }
+    {
+      auto t = timer.pass("resolve");
+      out_.bind();
+      glBindTextureUnit(STOCHASTIC_ACCUM_UNIT, colour_.get());
+      glBindTextureUnit(STOCHASTIC_TOTAL_UNIT, total_.color_texture());
+      view_.fx->bind_backdrop(resolve_.get());
+      glUseProgram(resolve_.get());
+      quad_.draw();
+    }
+    if (flicker_runs_ > 0) {  // outside the timed passes: the frames the flicker metric compares
+      frames_.push_back(rgb_of(out_.read_rgba32f()));
+      if (static_cast<int>(frames_.size()) > flicker_runs_) frames_.erase(frames_.begin());
+    }
+  }
+
+  Validation validate() override {
+    Validation v;
+    auto& m = v.metrics;
+    std::vector<float> rgb = rgb_of(out_.read_rgba32f());
+    const HostLists& host = view_.fragments;
+    ListStats stats = list_stats(host);
+    auto ref = composite_reference(host, view_.backdrop);
+    std::vector<double> model = stochastic_model(coverage_fragments_, host, view_.backdrop, setup_);
+    ApproxError err = approx_error(rgb, ref);
+    m["total_fragments"] = std::to_string(stats.total_fragments);
+    m["peak_depth"] = std::to_string(stats.peak_depth);
+    m["mean_depth"] = fmt(stats.mean_depth);
+    m["polygons"] = std::to_string(view_.fx->mesh().polygons());
+    if (view_.fx->opaque()) m["hidden_fragments"] = std::to_string(view_.hidden);
+    m["rmse"] = fmt(err.rmse);
+    m["psnr"] = fmt(err.psnr);
+    m["max_abs_error"] = fmt(err.max_abs_error);
+    m["frac_pixels_off"] = fmt(err.frac_pixels_off);
+    m["model_rmse"] = fmt(approx_error(std::vector<float>(model.begin(), model.end()), ref).rmse);
+    m["bytes_per_pixel"] = std::to_string(bytes_);
+    m["msaa_samples"] = std::to_string(setup_.msaa_samples);
+    ModelCheck check = check_against_model(rgb, model, width_, kStochasticTolerance);
+    m["nonfinite"] = std::to_string(check.nonfinite);
+    m["model_max_diff"] = fmt(check.max_diff);
+    if (frames_.size() >= 2) {
+      Flicker f = flicker_of(frames_);
+      m["flicker"] = fmt(f.mean);
+      m["flicker_max"] = fmt(f.peak);
+      m["flicker_pixels"] = std::to_string(f.changed);
+    }
+    if (!dump_.empty()) write_result_images(dump_, rgb, ref, width_, height_);
+
+    std::vector<std::string> problems;
+    {
+      auto shadow = view_.fx->validate_shadow();
+      m.insert(shadow.metrics.begin(), shadow.metrics.end());
+      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
+    }
+    if (!stats.error.empty()) problems.push_back(stats.error);
+    if (coverage_lost_) problems.push_back("the MSAA coverage record lost fragments");
+    if (check.nonfinite)
+      problems.push_back(std::to_string(check.nonfinite) + " non-finite channel value(s) (NaN or Inf)");
+    if (check.out_of_range) problems.push_back(std::to_string(check.out_of_range) + " channel value(s) outside [0, 1]");
+    if (check.off)
+      problems.push_back(std::to_string(check.off) +
+                         " channel value(s) differ from STOCHASTIC's CPU model (same masks) by more than 2/255; "
+                         "first: " +
+                         check.first_off);
+    v.valid = problems.empty();
+    for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
+    return v;
+  }
+
+ private:
+  // The colour behind the transparent layers, in one place (the opaque effect will replace it).
+
+  // Every fragment's MSAA coverage, once: counted, then recorded into a buffer of that size.
+  void record_coverage() {
+    const GLuint words = STOCHASTIC_CAPTURE_WORDS;
+    GLuint capacity = static_cast<GLuint>(view_.fragments.nodes.size() * 2 + 1024);
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      gl::Buffer buffer = gl::make_buffer();
+      size_t bytes = sizeof(GLuint) * (1 + static_cast<size_t>(capacity) * words);
+      glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+      glClearNamedBufferData(buffer.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+      glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
+      glViewport(0, 0, width_, height_);
+      glEnable(GL_MULTISAMPLE);
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_BLEND);
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      glProgramUniform1ui(coverage_.get(), glGetUniformLocation(coverage_.get(), "capacity"), capacity);
+      glProgramUniform1i(coverage_.get(), glGetUniformLocation(coverage_.get(), "width"), width_);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STOCHASTIC_CAPTURE_BINDING, buffer.get());
+      view_.fx->bind_geometry(coverage_.get());
+      glUseProgram(coverage_.get());
+      view_.mesh->draw();
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      GLuint count = 0;
+      glGetNamedBufferSubData(buffer.get(), 0, sizeof(GLuint), &count);
+      if (count > capacity) {
+        capacity = count;
+        continue;
+      }
+      std::vector<GLuint> data(static_cast<size_t>(count) * words);
+      if (count) glGetNamedBufferSubData(buffer.get(), sizeof(GLuint), sizeof(GLuint) * data.size(), data.data());
+      coverage_fragments_.clear();
+      for (size_t i = 0; i < count; ++i) {
+        const GLuint* w = &data[i * words];
+        // The opaque effect: the CPU hides what lies behind the opaque depth (the record keeps all).
+        if (view_.backdrop.hides(w[0], std::bit_cast<float>(w[4]))) continue;
+        // gl_FragDepth is clamped to the depth range: the centre depth of a fragment whose centre lies
+        // outside its primitive is extrapolated and can leave [0, 1].
+        coverage_fragments_.push_back({w[0], w[1], w[2], w[3], std::clamp(std::bit_cast<float>(w[4]), 0.0f, 1.0f)});
+      }
+      return;
+    }
+    coverage_lost_ = true;
+  }
+
+  int width_, height_;
+  uint32_t run_seed_;
+  CapturedView view_;
+  RenderTarget out_, total_;
+  FullscreenTriangle quad_;
+  gl::Texture colour_, depth_;
+  gl::Framebuffer msaa_;
+  gl::Program coverage_, depth_pass_, accumulate_, alpha_, resolve_;
+  StochasticSetup setup_;
+  std::vector<CoverageFragment> coverage_fragments_;
+  bool coverage_lost_ = false;
+  uint32_t frame_ = 0;
+  int bytes_ = 0;
+  int flicker_runs_;
+  std::string dump_;
+  std::vector<std::vector<float>> frames_;
+};
+
+}  // namespace
+
+std::unique_ptr<OitCase> make_stochastic_case(const ParamSet& p, CaseContext& ctx) {
+  return std::make_unique<StochasticCase>(p, ctx);
+}
+
+}  // namespace oitbench::oit
