@@ -38,7 +38,7 @@ Node at_node(float t, float z) { return {std::bit_cast<unsigned>(t) ^ kOneBits, 
 
 glm::vec4 merge(glm::vec4 a, glm::vec4 b) { return {glm::vec3(a) + a.w * glm::vec3(b), a.w * b.w}; }
 
-// --- The insertions of shaders/approx/insert.frag, on the CPU -----------------------------------
+// --- The insertions of shaders/approx/insert/ (one file per technique), on the CPU ---------
 void insert_mlab(std::vector<Node>& s, int n, glm::vec4 ct, float z) {
   std::vector<glm::vec4> c(n + 1);
   std::vector<float> d(n + 1);
@@ -286,7 +286,7 @@ ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const App
     const glm::vec3 bg = backdrop.at(p);
     glm::vec3 c = bg;
     if (tech == T::Ht) {
-      // The core: the n nearest fragments in (depth, colour) order, as insert.frag's TECH_HT.
+      // The core: the n nearest fragments in (depth, colour) order, as shaders/approx/insert/ht.glsl.
       std::fill(s.begin(), s.end(), Node(0u));
       for (const auto& f : frags) {
         unsigned key = pack4(f.colour);
