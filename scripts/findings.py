@@ -24,9 +24,9 @@ import statistics
 import sys
 
 from oitbench import results as oitres  # noqa: E402
-import plot  # noqa: E402  (pareto_front, oit_label: the figure's front and labels, so the text agrees)
-import report  # noqa: E402  (collect: summary CSVs by header, NAME_raw.csv beside them)
-import tables  # noqa: E402  (load_paper, build_rows, fmt: the paper tables as the report shows them)
+from oitbench import figures as plot  # noqa: E402  (pareto_front, oit_label: the figure's front and labels, so the text agrees)
+from oitbench import report  # noqa: E402  (collect: summary CSVs by header, NAME_raw.csv beside them)
+from oitbench import papers as tables  # noqa: E402  (load_paper, build_rows, fmt: the paper tables as the report shows them)
 from oitbench import cli  # noqa: E402
 
 DASH = tables.DASH

@@ -13,7 +13,7 @@ from support import TempDirTest, run_script
 from synthetic import SCRIPTS
 
 sys.path.insert(0, SCRIPTS)
-import ab  # noqa: E402
+from oitbench import ab  # noqa: E402
 
 FAKE = r'''#!/usr/bin/python3
 import csv, math, os, sys

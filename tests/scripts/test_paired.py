@@ -8,7 +8,7 @@ from support import TempDirTest, run_script
 from synthetic import SCRIPTS
 
 sys.path.insert(0, SCRIPTS)
-import tables  # noqa: E402
+from oitbench import papers as tables  # noqa: E402
 
 
 def row(tech, view, pas, speedup, status="ok"):

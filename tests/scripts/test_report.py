@@ -454,7 +454,7 @@ class ComparePageSynthetic(ReportCase):
         sort = (syn.sort_rows(), [], ["n", "keys"])
         a = write_side(self.path("a"), {"sort": sort})
         b = write_side(self.path("b"), {"sort": sort}, rng_seed=3)
-        code = ("import sys; sys.path.insert(0, sys.argv[1]); import compare, report\n"
+        code = ("import sys; sys.path.insert(0, sys.argv[1]); import report; from oitbench import compare\n"
                 "def fail(*args, **kwargs): raise ValueError('no figure today')\n"
                 "compare.draw_figures = fail\n"
                 "sys.exit(report.main(sys.argv[2:]))")
