@@ -49,14 +49,14 @@ from oitbench.ab import (
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  usage="ab.py [options] -- RUN ARGUMENTS...")
-    ap.add_argument("--rounds", type=int, default=10, help="round pairs: A and B runs each (default 10)")
+    ap.add_argument("--rounds", type=cli.positive(int), default=10, help="round pairs: A and B runs each (default 10)")
     ap.add_argument("-o", "--out-dir", default="ab", help="where the runs and the comparison go (default ab/)")
     for c in ("a", "b"):
         ap.add_argument(f"--{c}-exe", default=DEFAULT_EXE, help=f"{c.upper()}'s oitbench binary")
         ap.add_argument(f"--{c}-env", action="append", metavar="NAME=VALUE", help=f"{c.upper()}'s environment")
         ap.add_argument(f"--{c}-args", default="", help=f"{c.upper()}'s own run arguments (one string)")
         ap.add_argument(f"--{c}-label", default=c.upper(), help=f"{c.upper()}'s name in the output")
-    ap.add_argument("--min-effect", type=float, default=MIN_EFFECT,
+    ap.add_argument("--min-effect", type=cli.non_negative(), default=MIN_EFFECT,
                     help=f"smallest relative difference flagged (default {MIN_EFFECT:g}: 1%%)")
     ap.add_argument("--compare-only", action="store_true", help="compare the rounds already in the out dir")
     ap.add_argument("--summarize", nargs="+", metavar="DIR",
@@ -65,17 +65,19 @@ def main(argv=None):
     args = ap.parse_args(argv)
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     if args.summarize:
-        try:
-            print(summarize(args.summarize))
-        except (OSError, KeyError, ValueError) as e:
-            print(f"ab.py: --summarize: {e}", file=sys.stderr)
-            return 2
+        print(summarize(args.summarize))
         return 0
     run_args = args.run_args[1:] if args.run_args[:1] == ["--"] else args.run_args
     if not run_args and not args.compare_only:
         ap.error("give the run arguments after --, e.g. -- occupancy --quick")
-    if args.rounds < 1:
-        ap.error("--rounds must be at least 1")
+    if os.path.exists(args.out_dir) and not os.path.isdir(args.out_dir):
+        ap.error(f"-o/--out-dir {args.out_dir}: is a file, not a folder")
+    own_args = {}
+    for c in ("a", "b"):
+        try:
+            own_args[c] = shlex.split(getattr(args, f"{c}_args"))
+        except ValueError as e:
+            ap.error(f"--{c}-args '{getattr(args, f'{c}_args')}': {e}")
     for bad in ("--out", "-o", "--raw"):
         if bad in run_args:
             ap.error(f"{bad} is ab.py's to set")
@@ -83,12 +85,13 @@ def main(argv=None):
     for c in ("A", "B"):
         lc = c.lower()
         configs[c] = {"exe": getattr(args, f"{lc}_exe"), "env": parse_env(getattr(args, f"{lc}_env"), ap),
-                      "args": shlex.split(getattr(args, f"{lc}_args")), "label": getattr(args, f"{lc}_label")}
+                      "args": own_args[lc], "label": getattr(args, f"{lc}_label")}
     skip = set_names(args.a_args) | set_names(args.b_args)
     paths = {c: [] for c in configs}
     failed = []
     for c in configs:
-        os.makedirs(os.path.join(args.out_dir, c), exist_ok=True)
+        if not args.compare_only:
+            os.makedirs(os.path.join(args.out_dir, c), exist_ok=True)
     for c, k in round_order(args.rounds):
         out = os.path.join(args.out_dir, c, f"round-{k + 1:02d}.csv")
         raw = os.path.join(args.out_dir, c, f"round-{k + 1:02d}_raw.csv")
@@ -115,17 +118,23 @@ def main(argv=None):
     both = [k for k in range(args.rounds) if os.path.exists(paths["A"][k]) and os.path.exists(paths["B"][k])]
     present = {c: [paths[c][k] for k in both] for c in paths}
     n = len(both)
+    if n == 0 and args.compare_only:
+        raise oitres.ResultsError(f"{args.out_dir}: no round pair to compare (A/round-NN.csv and B/round-NN.csv, "
+                                  "as ab.py writes them)")
     if n == 0:
         print("ab.py: no round wrote a CSV", file=sys.stderr)
         return 1
-    try:
-        results, left_out = compare_rounds(present["A"], present["B"], skip, args.min_effect)
-        labels = (configs["A"]["label"], configs["B"]["label"])
-        print(f"A = {labels[0]}: {run_identity(present['A'][0])}")
-        print(f"B = {labels[1]}: {run_identity(present['B'][0])}")
-    except oitres.ResultsError as e:
-        print(f"ab.py: {e}", file=sys.stderr)
-        return 2
+    results, left_out = compare_rounds(present["A"], present["B"], skip, args.min_effect)
+    if not results:
+        why = (f"{args.out_dir}: no case ran ok in every round of A and B; nothing to compare"
+               + (f" ({len(left_out)} case(s) missing from some round)" if left_out else ""))
+        if args.compare_only:
+            raise oitres.ResultsError(why)  # the rounds given are not rounds of one comparison: exit 2
+        print(f"ab.py: {why}" + (f"; failed runs: {', '.join(failed)}" if failed else ""), file=sys.stderr)
+        return 1
+    labels = (configs["A"]["label"], configs["B"]["label"])
+    print(f"A = {labels[0]}: {run_identity(present['A'][0])}")
+    print(f"B = {labels[1]}: {run_identity(present['B'][0])}")
     print(f"{n} round pair(s) A B B A ...; ratio = B / A per pair, its median and interval (at "
           f"{100 * (1 - 0.05 / max(1, len(results))):.2f}% each, 95% for all {len(results)} together); "
           "noise = spread of neighbouring runs of one configuration\n")

@@ -67,7 +67,7 @@ def main(argv=None):
     rows = []
     for path in args.csv:
         try:
-            rows += oitres.read_csv(path)[1]
+            rows += oitres.Run.load(path).rows
         except oitres.ResultsError as e:
             print(f"effects_table.py: {e}", file=sys.stderr)
             return 2

@@ -19,6 +19,7 @@ import sys
 
 from oitbench import cli
 from oitbench import results as oitres
+from oitbench.figures import plt
 from oitbench.figures import (
     FASTEST_HEADER, draw, fastest_figure, fastest_lines, fastest_table, figure_name, save, unique_labels)
 
@@ -51,6 +52,11 @@ def main(argv=None):
             count[exp] = count.get(exp, 0) + 1
     # "none": every figure drawn and counted, no file written (the reference CSVs' test).
     formats = [f.strip() for f in args.format.split(",") if f.strip() and f.strip() != "none"]
+    known = plt.gcf().canvas.get_supported_filetypes()
+    unknown = [f for f in formats if f not in known]
+    if unknown:
+        ap.error(f"--format {args.format}: unknown format {', '.join(unknown)} (known: {', '.join(sorted(known))}, "
+                 "none)")
     for run in runs:
         for exp in run.experiments():
             data, fig, lines = draw(run, exp)

@@ -7,10 +7,11 @@ committed page differs.
     /usr/bin/python3 scripts/schema_doc.py [-o docs/csv-schema.md] [--schema scripts/schema.json]
 """
 import argparse
-import json
 import os
 import sys
-from oitbench import cli  # noqa: E402
+
+from oitbench import cli
+from oitbench import results as oitres
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -68,13 +69,7 @@ def main(argv=None):
     ap.add_argument("-o", "--out", default=os.path.join(HERE, "..", "docs", "csv-schema.md"))
     ap.add_argument("--schema", default=os.path.join(HERE, "schema.json"))
     args = ap.parse_args(argv)
-    try:
-        with open(args.schema, encoding="utf-8") as f:
-            schema = json.load(f)
-    except (OSError, ValueError) as e:
-        print(f"schema_doc: cannot read {args.schema}: {e}", file=sys.stderr)
-        return 2
-    text = render(schema)
+    text = render(oitres.load_schema(args.schema))
     if args.out == "-":
         sys.stdout.write(text)
     else:

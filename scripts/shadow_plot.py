@@ -114,10 +114,15 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if not args.out and not args.table:
         ap.error("give --out FIGURE or --table")
+    if args.out and not args.table:
+        ext = os.path.splitext(args.out)[1].lstrip(".").lower()
+        known = plt.gcf().canvas.get_supported_filetypes()
+        if ext not in known:
+            ap.error(f"--out {args.out}: the extension names no figure format (known: {', '.join(sorted(known))})")
     rows = []
     try:
         for path in args.csv:
-            rows += oitres.read_csv(path)[1]
+            rows += oitres.Run.load(path).rows
     except oitres.ResultsError as e:
         print(f"shadow_plot.py: {e}", file=sys.stderr)
         return 2

@@ -80,7 +80,8 @@ def describe(key):
 
 def medians(path, skip):
     """{case key: median_ms} of a round's ok rows."""
-    _, rows = oitres.read_csv(path)
+    header, rows = oitres.read_csv(path)
+    oitres.check_summary_header(path, header)
     out = {}
     for r in rows:
         m = oitres.to_float(r.get("median_ms"))
@@ -136,16 +137,45 @@ def compare_rounds(a_paths, b_paths, skip, min_effect):
     return [CaseResult(k, [r[k] for r in a], [r[k] for r in b], min_effect, confidence) for k in keys], left_out
 
 
+TABLE_COLUMNS = ["experiment", "case", "pass", "ratio", "ci_low", "ci_high", "noise_pct", "verdict", "flagged",
+                 "pairs", "pair_ratios"]
+
+
 def write_table(path, results):
     with open(path, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
-        w.writerow(["experiment", "case", "pass", "ratio", "ci_low", "ci_high", "noise_pct", "verdict", "flagged",
-                    "pairs", "pair_ratios"])
+        w.writerow(TABLE_COLUMNS)
         for r in results:
             w.writerow([r.key[0], describe(r.key), r.key[2], f"{r.ratio:.6g}",
                         f"{r.ci[0]:.6g}" if r.ci else "", f"{r.ci[1]:.6g}" if r.ci else "",
                         f"{r.noise:.3g}", r.verdict, int(r.flagged), len(r.ratios),
                         ";".join(f"{x:.5g}" for x in r.ratios)])
+
+
+def read_table(path):
+    """ab.csv's rows (write_table's), each with `ratio`, `ci_low`, `ci_high` (None when empty) and
+    `pair_ratios` as numbers; ResultsError naming FILE:LINE for anything else (garbage, a binary file, a
+    missing column, a number that is not one)."""
+    header, rows = oitres.read_csv(path)
+    missing = [c for c in TABLE_COLUMNS if c not in header]
+    if missing:
+        raise oitres.ResultsError(f"{path}:1: not an ab.py table (ab.csv; no column {', '.join(missing)})")
+    out = []
+    for line, r in enumerate(rows, 2):
+        def number(column, text, empty_ok):
+            if text == "" and empty_ok:
+                return None
+            x = float("nan") if text.strip().lower() == "nan" else oitres.to_float(text)
+            if x is None:
+                raise oitres.ResultsError(f"{path}:{line}: {column} '{text}' is not a number")
+            return x
+        row = dict(r)
+        row["ratio"] = number("ratio", r["ratio"], False)
+        row["ci_low"] = number("ci_low", r["ci_low"], True)
+        row["ci_high"] = number("ci_high", r["ci_high"], True)
+        row["pair_ratios"] = [number("pair_ratios", x, False) for x in r["pair_ratios"].split(";") if x]
+        out.append(row)
+    return out
 
 
 def figure(plt, entries, title, xlabel):
@@ -198,16 +228,17 @@ def summarize(dirs):
     per_case = {}
     flagged_trials = 0
     for d in dirs:
-        with open(os.path.join(d, "ab.csv"), newline="", encoding="utf-8") as f:
-            rows = list(csv.DictReader(f))
+        if not os.path.isdir(d):
+            raise oitres.ResultsError(f"{d}: not a folder (--summarize takes ab.py's out folders)")
+        rows = read_table(os.path.join(d, "ab.csv"))
         flagged_trials += any(r["flagged"] == "1" for r in rows)
         for r in rows:
             per_case.setdefault(r["case"], []).append(r)
     lines = [f"{len(dirs)} trial(s); {flagged_trials} with a flagged case"]
     for case, rs in per_case.items():
-        ratios = [float(r["ratio"]) for r in rs]
-        los = [float(r["ci_low"]) for r in rs if r["ci_low"]]
-        his = [float(r["ci_high"]) for r in rs if r["ci_high"]]
+        ratios = [r["ratio"] for r in rs]
+        los = [r["ci_low"] for r in rs if r["ci_low"] is not None]
+        his = [r["ci_high"] for r in rs if r["ci_high"] is not None]
         noise = [float(r["noise_pct"]) for r in rs if r["noise_pct"] not in ("", "nan")]
         lines.append(f"{case}: slower in {sum(r['verdict'] == 'SLOWER' for r in rs)}/{len(rs)}, faster in "
                      f"{sum(r['verdict'] == 'FASTER' for r in rs)}/{len(rs)}; ratio {min(ratios):.3f}-"
@@ -215,7 +246,7 @@ def summarize(dirs):
                      + (f"{min(los):.3f}-{max(his):.3f}" if los and his else "-")
                      + (f"; neighbouring identical runs {oitres.median(noise):.1f}% apart (median)" if noise else ""))
         # Every trial's round pairs together: as one A/B run of that many rounds.
-        pooled = [float(x) for r in rs for x in r.get("pair_ratios", "").split(";") if x]
+        pooled = [x for r in rs for x in r["pair_ratios"]]
         ci = median_interval(pooled, 1 - 0.05 / max(1, len(per_case))) if pooled else None
         if ci:
             lines.append(f"  pooled over the trials: {len(pooled)} round pairs, ratio {oitres.median(pooled):.3f} "

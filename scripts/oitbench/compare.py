@@ -5,6 +5,7 @@ import math
 import os
 import random
 
+from oitbench import cli
 from oitbench import results as oitres
 
 Z95 = 1.959964
@@ -436,11 +437,11 @@ def draw_figures(out_dir, runs, comparisons, params_of, args, order=key_order):
 
 def add_statistics_options(ap):
     """The options that decide ratios, intervals and verdicts (report.py --compare takes them too)."""
-    ap.add_argument("--min-effect", type=float, default=MIN_EFFECT,
+    ap.add_argument("--min-effect", type=cli.number(float, low=1.0), default=MIN_EFFECT,
                     help=f"smallest ratio (or 1/ratio) that counts as a change: the between-run noise band "
                          f"(default {MIN_EFFECT:g})")
-    ap.add_argument("--noise-k", type=float, default=NOISE_K,
+    ap.add_argument("--noise-k", type=cli.non_negative(), default=NOISE_K,
                     help=f"noise band width in robust standard deviations of log time (default {NOISE_K:g})")
-    ap.add_argument("--bootstrap", type=int, default=BOOTSTRAP,
+    ap.add_argument("--bootstrap", type=cli.positive(int), default=BOOTSTRAP,
                     help=f"bootstrap resamples (default {BOOTSTRAP})")
-    ap.add_argument("--seed", type=int, default=SEED, help=f"bootstrap seed (default {SEED})")
+    ap.add_argument("--seed", type=cli.number(int), default=SEED, help=f"bootstrap seed (default {SEED})")

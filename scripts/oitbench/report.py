@@ -1,6 +1,5 @@
 """The report page: the library behind scripts/report.py (collect() is shared with findings.py)."""
 import collections
-import csv
 import html
 import os
 import re
@@ -702,22 +701,18 @@ def ab_section(page, dirs, out_dir, failures):
         page.section(3, "ab-" + slug(label), label)
         entries, rows_html = [], []
         for path in paths:
-            with open(path, newline="", encoding="utf-8") as f:
-                rows = list(csv.DictReader(f))
+            rows = ab.read_table(path)
             trial = os.path.basename(os.path.dirname(path)) if len(paths) > 1 else ""
             for r in rows:
-                ratios = [float(x) for x in r.get("pair_ratios", "").split(";") if x]
-                lo = float(r["ci_low"]) if r.get("ci_low") else None
-                hi = float(r["ci_high"]) if r.get("ci_high") else None
+                ratios, lo, hi = r["pair_ratios"], r["ci_low"], r["ci_high"]
                 name = f"{r['case']} {r['pass']}" + (f" ({trial})" if trial else "")
-                entries.append((name, ratios, lo, hi, float(r["ratio"]), r.get("flagged") == "1"))
+                entries.append((name, ratios, lo, hi, r["ratio"], r.get("flagged") == "1"))
                 if not trial:
-                    rows_html.append([esc(r["case"]), esc(r["pass"]), f"{float(r['ratio']):.3f}",
+                    rows_html.append([esc(r["case"]), esc(r["pass"]), f"{r['ratio']:.3f}",
                                       f"{lo:.3f}&ndash;{hi:.3f}" if lo is not None and hi is not None else "&mdash;",
                                       esc(r.get("noise_pct", "")), esc(r.get("verdict", "")), esc(r.get("pairs", ""))])
         if summary:
-            with open(summary, encoding="utf-8") as f:
-                page.add(f"<pre>{esc(f.read().strip())}</pre>")
+            page.add(f"<pre>{esc(oitres.read_text(summary).strip())}</pre>")
         if rows_html:
             page.add(html_table(["case", "pass", "B / A", "interval", "noise %", "verdict", "round pairs"],
                                 rows_html, numeric=[False, False, True, False, True, False, True]))
@@ -914,7 +909,7 @@ class Side:
             elif oitres.is_raw_header(header):
                 raws[f[:-len(".csv")]] = p
             else:
-                raise oitres.ResultsError(f"{p}: not an oitbench summary or --raw CSV (no experiment and "
+                raise oitres.ResultsError(f"{p}:1: not an oitbench summary or --raw CSV (no experiment and "
                                           "median_ms columns, nor rep and cpu_ms)")
         if not summaries:
             raise oitres.ResultsError(f"{self.folder}: no oitbench summary CSV here (presets/NAME.csv, "

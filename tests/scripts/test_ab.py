@@ -32,16 +32,17 @@ if os.environ.get("FAKE_FAIL_CALL") == str(n):
 with open(os.environ["FAKE_LOG"], "a") as log:
     log.write(os.environ.get("FAKE_NAME", "?") + "\n")
 machine = 1 + 0.4 * math.sin(1.3 * (n // 2))   # the pair's two runs see the same machine
-cols = ["experiment", "variant", "pass", "status", "valid", "width", "height", "median_ms", "parameters",
-        "size", "draws", "seed", "fault", "driver", "gl_renderer", "git_sha", "lp_num_threads", "env"]
+cols = ["experiment", "variant", "pass", "status", "valid", "reason", "width", "height", "reps", "warmup",
+        "median_ms", "parameters", "size", "draws", "seed", "fault", "driver", "gl_renderer", "git_sha",
+        "lp_num_threads", "env"]
 with open(out, "w", newline="") as f:
     w = csv.writer(f)
     w.writerow(cols)
     for size in (1, 33):
         jitter = 1 + 0.004 * math.sin(7.1 * n + size)
         ms = size * draws / 64 * machine * jitter
-        w.writerow(["occupancy", "dynamic", "draw", "ok", 1, 64, 64, ms, "size;draws;fault;seed", size, draws, 1,
-                    "none", "llvmpipe", "llvmpipe (fake)", "abc", 2, ""])
+        w.writerow(["occupancy", "dynamic", "draw", "ok", 1, "", 64, 64, 10, 2, ms, "size;draws;fault;seed", size,
+                    draws, 1, "none", "llvmpipe", "llvmpipe (fake)", "abc", 2, ""])
 open(raw, "w").close()
 '''
 

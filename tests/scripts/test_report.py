@@ -435,7 +435,7 @@ class ComparePageSynthetic(ReportCase):
             f.write("name,value\nx,1\n")
         proc = self.compare_page(a, b, check=False)
         self.assertEqual(proc.returncode, 2, proc.stderr)
-        self.assertIn(os.path.join(b, "presets", "broken.csv") + ": not an oitbench summary or --raw CSV", proc.stderr)
+        self.assertIn(os.path.join(b, "presets", "broken.csv") + ":1: not an oitbench summary or --raw CSV", proc.stderr)
         proc = self.compare_page(a, os.path.join(a, "presets", "sort.csv"), check=False)
         self.assertEqual(proc.returncode, 2, proc.stderr)
         self.assertIn("sort.csv: not a folder", proc.stderr)
