@@ -13,12 +13,12 @@ from pathlib import Path
 
 from oitbench import cli
 from oitbench import results as oitres
+from oitbench import techniques
 
 ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house"]
 # Our stand-ins for the paper's models (scenes/engine-grid.json, scenes/house.json): same view names.
 PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
-TECHNIQUES = ["BASE-IS", "BASE-IMS", "BASE-RBS-L", "RBS-G", "CS-IS", "CS-IMS", "CS-RBS-L",
-              "BMA-IS", "BMA-IMS", "BMA-RBS-L", "BMA-AUTO", "CPU-NATIVE"]
+TECHNIQUES = techniques.exact_in_paper_order()  # the paper's order, from scripts/techniques.json
 
 
 def paper_name(t):

@@ -5,6 +5,7 @@ import math
 import os
 import shlex
 
+from oitbench import casekey
 from oitbench import results as oitres
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -63,9 +64,8 @@ def set_names(args_text):
 
 
 def case_key(row, skip):
-    params = [p for p in (row.get("parameters") or "").split(";") if p and p not in skip]
-    return (row["experiment"], row.get("variant", ""), row["pass"], row.get("width", ""), row.get("height", "")) + \
-        tuple(f"{p}={row.get(p, '')}" for p in params)
+    """The case and the parameters it names, less those A and B set differently."""
+    return casekey.named_key(row, skip)
 
 
 def describe(key):

@@ -6,6 +6,7 @@ import os
 import random
 
 from oitbench import cli
+from oitbench import casekey
 from oitbench import results as oitres
 
 Z95 = 1.959964
@@ -71,8 +72,7 @@ def case_key(row, params):
     """What joins the runs. A parameter the schema scopes away from this row (applies_where: `block` only
     for the RBS techniques, ...) is left out, so schema 1 files, which filled every parameter, join schema
     2 files, which leave those empty."""
-    return (row["experiment"], row["variant"], row["pass"], row.get("width", ""), row.get("height", "")) + \
-        tuple(row.get(p, "") if oitres.applies(p, row) else "" for p in params)
+    return casekey.key(row, params)
 
 
 def load_raw_samples(path, summary_rows, params_of):
@@ -103,18 +103,12 @@ def load_raw_samples(path, summary_rows, params_of):
     return samples
 
 
-def row_param_names(row, params):
-    """The parameters a summary row's case uses: its `parameters` column, or (older files without one) the
-    experiment's parameter columns that the row fills."""
-    names = [p for p in (row.get("parameters") or "").split(";") if p]
-    return names or [p for p in params if row.get(p, "") != ""]
+row_param_names = casekey.used_params
 
 
 def raw_key(row, params):
     """A summary row's identity among the raw rows: its case and the values of the parameters it uses."""
-    names = row_param_names(row, params)
-    return (row["experiment"], row["variant"], row["pass"], row.get("width", ""), row.get("height", "")) + \
-        tuple((p, row.get(p, "")) for p in names)
+    return casekey.named_key(row, params=params, pairs=True)
 
 
 def bootstrap_ratio_ci(a, b, iterations, rng):

@@ -21,6 +21,7 @@ import matplotlib.patches
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
 from oitbench import results as oitres
+from oitbench import techniques
 
 PLOTTERS = {}
 MAX_NOTE_LINES = 8
@@ -581,8 +582,8 @@ def plot_spinlock(data):
 ERROR_COLUMNS = ("rmse", "max_abs_error")
 
 
-OIT_APPROX = {"MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT", "WBOIT", "unsorted", "HT"}
-OIT_PEEL = {"DP", "DDP"}
+OIT_APPROX = set(techniques.names("approximate"))
+OIT_PEEL = set(techniques.names("peel"))
 
 
 def oit_label(row):
@@ -994,7 +995,7 @@ def paper_figure(title, pairs, paper_hw, ours_hw):
     return fig
 
 
-APPROX_TECHNIQUES = OIT_APPROX | {"MBOIT", "STOCHASTIC"}
+APPROX_TECHNIQUES = OIT_APPROX | set(techniques.names("moments", "stochastic"))
 
 
 def is_exact(row):

@@ -11,6 +11,7 @@ import urllib.parse
 
 from oitbench import ab
 from oitbench import compare
+from oitbench import casekey
 from oitbench import results as oitres
 from oitbench import figures as plot
 from oitbench import papers as tables
@@ -208,8 +209,8 @@ def write_file_list(out_dir, since):
 # -------------------------------------------------------------------------------------------- run facts
 
 def case_key(row, params):
-    return (row["experiment"], row.get("variant", ""), row.get("width", ""), row.get("height", "")) + \
-        tuple(row.get(p, "") for p in params)
+    """One case's rows, every pass together."""
+    return casekey.key(row, params, with_pass=False, scoped=False)
 
 
 class Facts:

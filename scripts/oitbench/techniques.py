@@ -1,0 +1,47 @@
+"""The oit experiment's techniques, read from scripts/techniques.json (the binary's export of its technique
+table, `oitbench list --techniques --json`; tests/scripts/test_technique_table.py checks the two agree).
+Scripts ask here for names and families instead of typing technique names."""
+import json
+import os
+
+from oitbench.results import ResultsError
+
+TECHNIQUES_PATH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "techniques.json")
+# Knowles 2014's tables list the exact techniques scheme by scheme in this order (its CUDA-* are our CS-*;
+# CPU-NATIVE is ours, last); within a scheme the technique table's order (IS, IMS, RBS-L, AUTO) is kept.
+PAPER_SCHEME_ORDER = ("BASE", "G", "CS", "BMA", "CPU")
+
+
+def load(path=TECHNIQUES_PATH):
+    """The technique table: a list of {name, family, scheme, sort, captures, params, ...}. ResultsError
+    names the file for one that is not the export."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            table = json.load(f)
+    except OSError as e:
+        raise ResultsError(f"{path}: cannot read ({e.strerror or e})") from e
+    except UnicodeDecodeError as e:
+        raise ResultsError(f"{path}: not a text file ({e.reason})") from e
+    except json.JSONDecodeError as e:
+        raise ResultsError(f"{path}:{e.lineno}: not JSON ({e.msg})") from e
+    if not isinstance(table, dict) or not isinstance(table.get("techniques"), list):
+        raise ResultsError(f"{path}: not oitbench's technique table (`oitbench list --techniques --json`)")
+    return table["techniques"]
+
+
+TABLE = load()
+
+
+def names(*families):
+    """The techniques of these families (all when none is given), in the table's order."""
+    return [t["name"] for t in TABLE if not families or t["family"] in families]
+
+
+def scheme(name):
+    return next((t["scheme"] for t in TABLE if t["name"] == name), "")
+
+
+def exact_in_paper_order(schemes=PAPER_SCHEME_ORDER):
+    """The exact techniques of `schemes`, scheme by scheme as Knowles 2014's tables list them."""
+    exact = [t for t in TABLE if t["family"] == "exact" and t["scheme"] in schemes]
+    return [t["name"] for t in sorted(exact, key=lambda t: (schemes.index(t["scheme"]), TABLE.index(t)))]
