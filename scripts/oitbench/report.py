@@ -4,6 +4,7 @@ import html
 import os
 import re
 import shutil
+import string
 import struct
 import sys
 import time
@@ -350,120 +351,22 @@ class Page:
         for level, anchor, text in self.toc:
             toc.append(f'<li class="l{level}"><a href="#{esc(anchor)}">{esc(text)}</a></li>')
         toc.append("</ul></nav>")
-        return "\n".join([
-            "<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
-            f'<meta name="generator" content="{GENERATOR}">',
-            *(f'<meta name="{esc(k)}" content="{esc(v)}">' for k, v in sorted(self.meta.items())),
-            '<meta name="viewport" content="width=device-width, initial-scale=1">',
-            f"<title>{esc(self.title)}</title>", f"<style>{CSS}</style>", "</head>",
-            '<body data-loaded="0">', '<div id="broken-images" class="alert" hidden></div>',
-            '<div class="layout">', "\n".join(toc), '<main>', f"<h1>{esc(self.title)}</h1>",
-            "\n".join(self.body), "</main>", "</div>", f"<script>{CHECK_SCRIPT}</script>", "</body>", "</html>", ""])
+        meta = "".join(f'<meta name="{esc(k)}" content="{esc(v)}">\n' for k, v in sorted(self.meta.items()))
+        return string.Template(template("page.html")).substitute(
+            generator=GENERATOR, meta=meta, title=esc(self.title), css=template("report.css"), toc="\n".join(toc),
+            body="\n".join(self.body), script=template("check.js"))
 
 
-# The page checks itself once everything has loaded: how many images, how many figures, which did not
-# decode. The counts go on <body> (the headless-browser test reads them) and a broken image is named in
-# a banner at the top, so a reader sees it too.
-CHECK_SCRIPT = """
-window.addEventListener("load", function () {
-  var imgs = Array.prototype.slice.call(document.images);
-  var broken = imgs.filter(function (i) { return !i.complete || i.naturalWidth === 0; })
-                   .map(function (i) { return i.getAttribute("src"); });
-  var figures = imgs.filter(function (i) { return i.classList.contains("figure"); }).length;
-  var paper = imgs.filter(function (i) { return i.classList.contains("paper-figure"); }).length;
-  var summary = imgs.filter(function (i) { return i.classList.contains("summary-figure"); }).length;
-  document.body.setAttribute("data-paper-figures", String(paper));
-  document.body.setAttribute("data-summary-figures", String(summary));
-  document.body.setAttribute("data-images", String(imgs.length));
-  document.body.setAttribute("data-figures", String(figures));
-  document.body.setAttribute("data-broken", JSON.stringify(broken));
-  document.body.setAttribute("data-loaded", "1");
-  if (broken.length) {
-    var box = document.getElementById("broken-images");
-    box.textContent = broken.length + " image(s) did not load: " + broken.join(", ");
-    box.hidden = false;
-  }
-});
-"""
+# The page's skeleton, style and script are files in templates/: page.html (a string.Template), report.css,
+# check.js. The script checks the page once everything has loaded: how many images, how many figures,
+# which did not decode. The counts go on <body> (the headless-browser test reads them) and a broken image
+# is named in a banner at the top, so a reader sees it too.
+TEMPLATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "templates")
 
-CSS = """
-:root { --fg: #1f2328; --muted: #656d76; --line: #d8dee4; --bg: #ffffff; --soft: #f6f8fa; --accent: #0969da; }
-* { box-sizing: border-box; }
-body { margin: 0; color: var(--fg); background: var(--bg); font: 15px/1.5 system-ui, -apple-system, "Segoe UI",
-       Roboto, "Helvetica Neue", Arial, sans-serif; }
-.layout { display: flex; align-items: flex-start; }
-nav.toc { position: sticky; top: 0; flex: 0 0 250px; max-height: 100vh; overflow-y: auto; padding: 20px 14px;
-          border-right: 1px solid var(--line); background: var(--soft); font-size: 13px; }
-nav.toc ul { list-style: none; margin: 0; padding: 0; }
-nav.toc li { margin: 2px 0; }
-nav.toc li.l3 { padding-left: 14px; }
-nav.toc li.l4 { padding-left: 28px; font-size: 12px; }
-nav.toc a { color: var(--fg); text-decoration: none; }
-nav.toc a:hover { color: var(--accent); }
-.toc-title { font-weight: 600; margin-bottom: 8px; text-transform: uppercase; letter-spacing: .05em;
-             color: var(--muted); font-size: 11px; }
-main { flex: 1 1 auto; min-width: 0; max-width: 1280px; padding: 8px 36px 60px; }
-h1 { font-size: 28px; margin: 18px 0 4px; }
-h2 { font-size: 22px; margin: 40px 0 10px; padding-bottom: 6px; border-bottom: 1px solid var(--line); }
-h3 { font-size: 17px; margin: 28px 0 8px; }
-h4 { font-size: 15px; margin: 20px 0 6px; }
-a { color: var(--accent); }
-code { font: 13px ui-monospace, SFMono-Regular, Menlo, Consolas, monospace; background: var(--soft);
-       padding: 1px 4px; border-radius: 4px; }
-pre { font: 12px/1.4 ui-monospace, SFMono-Regular, Menlo, Consolas, monospace; background: var(--soft);
-      padding: 8px; border-radius: 6px; white-space: pre-wrap; max-height: 320px; overflow: auto; }
-.muted { color: var(--muted); }
-.lead { color: var(--muted); margin-top: 0; }
-.scroll { overflow-x: auto; margin: 8px 0 16px; }
-table.data { border-collapse: collapse; font-size: 13px; }
-table.data th, table.data td { border-bottom: 1px solid var(--line); padding: 4px 10px; text-align: left;
-                               vertical-align: top; }
-table.data th { background: var(--soft); font-weight: 600; position: sticky; top: 0; }
-table.data td.num, table.data th.num { text-align: right; font-variant-numeric: tabular-nums;
-                                       white-space: nowrap; }
-table.data tbody tr:hover { background: #f0f6ff; }
-table.data tr.unmatched td { color: var(--muted); }
-table.data td.ours { background: #f0f6ff; }
-table.data th.ours { background: #ddeeff; }
-details.table-run p { margin: 4px 0; }
-table.data td details summary { cursor: pointer; }
-dl.meta { display: grid; grid-template-columns: max-content minmax(0, 1fr) max-content minmax(0, 1fr);
-          gap: 2px 14px; margin: 0; font-size: 14px; }
-dl.meta dt { color: var(--muted); white-space: nowrap; }
-dl.meta dd { margin: 0; overflow-wrap: anywhere; }
-.small { font-size: 12px; margin: 6px 0 0; }
-.badge { display: inline-block; padding: 0 7px; border-radius: 10px; font-size: 12px; font-weight: 600;
-         margin-right: 3px; white-space: nowrap; }
-.badge.ok { background: #dafbe1; color: #116329; }
-.badge.invalid { background: #fff1c2; color: #7d4e00; }
-.badge.unsupported { background: #eaeef2; color: #424a53; }
-.badge.error { background: #ffebe9; color: #a40e26; }
-.badge.timeout { background: #fbefff; color: #6e40c9; }
-.badge.zero { opacity: .35; }
-.card { border: 1px solid var(--line); border-radius: 8px; padding: 12px 16px; margin: 14px 0; }
-.alert { background: #ffebe9; color: #a40e26; border-bottom: 1px solid #ffc1ba; padding: 10px 20px;
-         font-weight: 600; }
-.note { background: #fff8c5; border: 1px solid #eac54f; border-radius: 6px; padding: 8px 12px; }
-figure { margin: 16px 0 28px; }
-figure img.figure, figure img.paper-figure, figure img.summary-figure { display: block; max-width: 100%; height: auto; border: 1px solid var(--line);
-                    border-radius: 6px; background: #fff; }
-figcaption { font-size: 13px; color: var(--muted); margin-top: 4px; }
-.gallery { display: grid; grid-template-columns: repeat(auto-fill, minmax(250px, 1fr)); gap: 14px; }
-.gallery figure { margin: 0; }
-.gallery img { display: block; width: 100%; height: auto; image-rendering: pixelated;
-               border: 1px solid var(--line); border-radius: 4px; background: #000; }
-details.table-run { margin: 6px 0 14px; }
-details.table-run > summary { cursor: pointer; font-weight: 600; }
-details.table-run details > summary { cursor: pointer; color: var(--muted); font-size: 13px; }
-dl.howto dt { font-weight: 600; margin-top: 8px; }
-table.data tr.differs td { background: #fff8c5; }
-.case, .verdict.changed { white-space: nowrap; }
-.verdict.none, .verdict.band, .verdict.overlap { color: var(--muted); }
-.verdict.changed { font-weight: 600; padding: 0 6px; border-radius: 10px; }
-.verdict.slower { background: #ffebe9; color: #a40e26; }
-.verdict.faster { background: #dafbe1; color: #116329; }
-dl.howto dd { margin-left: 16px; }
-"""
+
+def template(name):
+    with open(os.path.join(TEMPLATES, name), encoding="utf-8") as f:
+        return f.read()
 
 
 # ------------------------------------------------------------------------------------------- sections
