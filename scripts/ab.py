@@ -41,8 +41,9 @@ import sys
 
 from oitbench import cli
 from oitbench import results as oitres
+from oitbench.stats import pairs_needed
 from oitbench.ab import (
-    DEFAULT_EXE, MIN_EFFECT, compare_rounds, describe, draw, pairs_needed, parse_env, round_order,
+    DEFAULT_EXE, MIN_EFFECT, compare_rounds, describe, draw, parse_env, round_order,
     run_identity, set_names, summarize, write_table)
 
 

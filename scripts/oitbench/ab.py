@@ -7,36 +7,11 @@ import shlex
 
 from oitbench import casekey
 from oitbench import results as oitres
+from oitbench.stats import mad, median_interval
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DEFAULT_EXE = os.path.join(REPO, "build", "oitbench")
 MIN_EFFECT = 0.01
-
-
-def binomial_half_cdf(n, j):
-    return sum(math.comb(n, i) for i in range(j + 1)) / 2.0 ** n
-
-
-def median_interval(values, confidence):
-    """The order statistics x(k), x(n+1-k) around the median at `confidence` (as micro/core/sampling.cpp);
-    None below the count that allows it."""
-    v = sorted(values)
-    n = len(v)
-    tail = (1 - confidence) / 2
-    k = 0
-    while k + 1 <= (n + 1) // 2 and binomial_half_cdf(n, k) <= tail:
-        k += 1
-    if k < 1:
-        return None
-    return v[k - 1], v[n - k]
-
-
-def pairs_needed(cases):
-    """The fewest round pairs that give an interval at 1 - 0.05 / cases (6 for one case, 7 for two, ...)."""
-    n = 1
-    while median_interval(list(range(n)), 1 - 0.05 / max(1, cases)) is None:
-        n += 1
-    return n
 
 
 def round_order(rounds):
@@ -118,13 +93,6 @@ class CaseResult:
         else:
             self.verdict = "no difference resolved"
         self.flagged = self.verdict in ("SLOWER", "FASTER")
-
-
-def mad(values):
-    if not values:
-        return 0.0
-    m = oitres.median(values)
-    return oitres.median([abs(x - m) for x in values])
 
 
 def compare_rounds(a_paths, b_paths, skip, min_effect):

@@ -8,6 +8,7 @@ import random
 from oitbench import cli
 from oitbench import casekey
 from oitbench import results as oitres
+from oitbench.stats import bootstrap_ratio_ci
 
 Z95 = 1.959964
 # Standard error of a sample median relative to the standard deviation of the samples (normal data).
@@ -109,22 +110,6 @@ row_param_names = casekey.used_params
 def raw_key(row, params):
     """A summary row's identity among the raw rows: its case and the values of the parameters it uses."""
     return casekey.named_key(row, params=params, pairs=True)
-
-
-def bootstrap_ratio_ci(a, b, iterations, rng):
-    """Percentile 95% interval of median(b*) / median(a*) over resamples of both sets."""
-    ratios = []
-    for _ in range(iterations):
-        ma = oitres.median(rng.choices(a, k=len(a)))
-        mb = oitres.median(rng.choices(b, k=len(b)))
-        if ma > 0:
-            ratios.append(mb / ma)
-    ratios.sort()
-    if not ratios:
-        return float("nan"), float("nan")
-    lo = ratios[int(0.025 * (len(ratios) - 1))]
-    hi = ratios[int(math.ceil(0.975 * (len(ratios) - 1)))]
-    return lo, hi
 
 
 class Comparison:

@@ -13,7 +13,7 @@ from support import TempDirTest, run_script
 from synthetic import SCRIPTS
 
 sys.path.insert(0, SCRIPTS)
-from oitbench import ab  # noqa: E402
+from oitbench import ab, stats  # noqa: E402
 
 FAKE = r'''#!/usr/bin/python3
 import csv, math, os, sys
@@ -121,8 +121,8 @@ class AbTest(TempDirTest):
         self.assertIn("--out is ab.py's to set", proc.stderr)
 
     def test_too_few_rounds_say_so(self):
-        self.assertEqual(ab.pairs_needed(1), 6)
-        self.assertEqual(ab.pairs_needed(2), 7)
+        self.assertEqual(stats.pairs_needed(1), 6)
+        self.assertEqual(stats.pairs_needed(2), 7)
         proc = run_script("ab.py", "--rounds", 6, "-o", self.path("out"), "--a-exe", self.exe, "--b-exe", self.exe,
                           "--", "occupancy")
         self.assertIn("need at least 7 round pairs", proc.stdout)
