@@ -37,8 +37,7 @@ RMSE_FLOOR = 1e-6  # exact techniques tie at this rmse, as on plot.py's error-ag
 TARGET_RESOLVE_VS_CPU = 2.0  # best shader resolve within this factor of CPU-NATIVE's
 TARGET_CAPTURE_RATE = 30e6  # fragments per second captured
 SCENE_ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house", "planes-deep"]
-# Our stand-ins for the papers' models (scenes/engine-grid.json, scenes/house.json).
-PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
+PAPER_SCENE = tables.PAPER_SCENE  # our stand-ins for the papers' models
 # The exact techniques that run as shaders (not CPU-NATIVE), as Knowles 2014 lists them.
 EXACT_SHADER = techniques.exact_in_paper_order(("BASE", "G", "CS", "BMA"))
 PER_PIXEL_ARRAY = ("MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT")
@@ -860,7 +859,7 @@ def speedups(f, name, pass_):
 
 def paper_speedup(pairs, technique, scene, view, metric):
     """The paper's table-3 speedup for our technique and view (CS-* stands for CUDA-*)."""
-    tech = "CUDA-" + technique[3:] if technique.startswith("CS-") else technique
+    tech = tables.paper_name(technique)
     pscene = PAPER_SCENE.get(scene, scene)
     for k, r in pairs.items():
         if k[0] == tech and k[2].lower() == pscene and k[3].lower() == view.lower() and k[4] == metric:
@@ -947,7 +946,7 @@ def section_knowles2014(f):
             continue
         avg[t] = {"average_total": statistics.mean(t_), "average_resolve": statistics.mean(r_),
                   "best_total": max(t_), "best_resolve": max(r_)}
-        tech = "CUDA-" + t[3:] if t.startswith("CS-") else t
+        tech = tables.paper_name(t)
         paper = [next((r["paper_speedup"] for k, r in summary.items() if k[0] == tech and
                        k[4] == f"{m}_speedup_vs_BASE-IS"), None) for m in avg[t]]
         body.append([t] + [f"{f_x(x)}x" for x in avg[t].values()] +

@@ -14,15 +14,10 @@ from pathlib import Path
 from oitbench import cli
 from oitbench import results as oitres
 from oitbench import techniques
+from oitbench.papers import PAPER_SCENE, paper_name
 
 ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house"]
-# Our stand-ins for the paper's models (scenes/engine-grid.json, scenes/house.json): same view names.
-PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
 TECHNIQUES = techniques.exact_in_paper_order()  # the paper's order, from scripts/techniques.json
-
-
-def paper_name(t):
-    return "CUDA-" + t[3:] if t.startswith("CS-") else t
 
 
 def paper_table(path, key):

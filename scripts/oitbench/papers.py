@@ -63,6 +63,15 @@ def _alloc_sort(alloc, sort_words, exclude=()):
     return T("oit", *alts, exclude=exclude, size="max_frags")
 
 
+# Our stand-ins for the papers' models (scenes/engine-grid.json, scenes/house.json): same view names.
+PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
+
+
+def paper_name(technique):
+    """Knowles 2014's name for our technique: our CS-* (compute shaders) stand in for its CUDA-*."""
+    return "CUDA-" + technique[3:] if technique.startswith("CS-") else technique
+
+
 TECHNIQUES = {
     # Brüll 2018, appendix A.1 (register array index assignment) and A.3 (bubble sort): the sort experiment.
     "naive insertion, dynamic index assignment: direct": T("sort", "direct"),
