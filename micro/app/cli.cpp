@@ -10,6 +10,7 @@
 #include "backends/drivers.hpp"
 #include "core/csv.hpp"
 #include "core/files.hpp"
+#include "core/outcomes.hpp"
 #include "core/presets.hpp"
 #include "core/provenance.hpp"
 #include "core/runner.hpp"
@@ -63,7 +64,8 @@ constexpr double kWeekSeconds = 604800;
 
 constexpr const char* kExitCodes =
     "Exit codes: 0 done (rows may still be invalid: see the status column), 1 errors or timeouts,\n"
-    "2 usage error, 3 nothing could run on this driver (all unsupported), 130 interrupted.";
+    "2 usage error, 3 nothing could run on this driver (all unsupported), 4 an outcome --expect did not\n"
+    "expect (with --expect: 0 when every outcome was expected), 130 interrupted.";
 
 // --driver and --device into the context options (a usage error when they do not fit together).
 void apply_context(CliState& s) {
@@ -213,6 +215,18 @@ void declare_fleet(CLI::App& run, CliState& s) {
                  "interleaved group and its baseline never split); auto: I and N from a Slurm array, a Kubernetes "
                  "Indexed Job or GitLab's parallel:")
       ->group(fleet);
+  run.add_option("--expect", s.run.options.expect,
+                 "Expected-status baseline: lines PATTERN STATUS (a case key or glob; invalid, unsupported, error, "
+                 "timeout, flaky). Exit 0 when every outcome is expected, 4 when one is not (a new failure, or a "
+                 "listed one that now passes); writes this run's list to OUT.expect (or --write-expect)")
+      ->group(fleet);
+  run.add_option("--write-expect", s.run.options.write_expect,
+                 "Write the baseline this run would expect (every case not ok with its status) to this file")
+      ->group(fleet);
+  run.add_option("--junit", s.run.options.junit,
+                 "Also write a JUnit XML report: one testcase per case (time: its median), properties driver, "
+                 "renderer, commit")
+      ->group(fleet);
 }
 
 void declare_run(CLI::App& run, CliState& s) {
@@ -238,11 +252,19 @@ void check_outputs(const RunOptions& o) {
     throw UsageError("--raw and --out name the same file (" + o.raw + "); give two files");
 }
 
+// --junit and the expected-status list a run writes: files (or new names) like --out.
+void check_fleet_outputs(const RunOptions& o) {
+  if (!o.junit.empty()) check_output_file(o.junit, "--junit");
+  if (const auto path = write_expect_path(o); !path.empty())
+    check_output_file(path, o.write_expect.empty() ? "--expect (its list, written beside --out)" : "--write-expect");
+}
+
 int execute_run(const CLI::App& run, CliState& s) {
   apply_context(s);
   RunOptions& o = s.run.options;
   o.context = s.context;
   check_outputs(o);
+  check_fleet_outputs(o);
   o.reps_given = run.count("--reps") > 0;
   o.sampling.adaptive = true;  // unless --reps, a preset entry's reps or --quick fix the count
   o.sampling.target_ci = s.target_ci_pct / 100;

@@ -50,7 +50,8 @@ std::vector<RunUnit> plan_units(const std::vector<Planned>& plan, const RunOptio
 
 std::string case_key(const std::string& experiment, Resolution res, const ParamSet& params) {
   std::string key = experiment + "/" + std::to_string(res.width) + "x" + std::to_string(res.height);
-  for (const auto& [k, v] : params.used_values()) key += "/" + k + "=" + v;
+  for (const auto& [k, v] : params.used_values())
+    if (k != "fault") key += "/" + k + "=" + v;
   return key;
 }
 

@@ -40,7 +40,8 @@ std::vector<RunUnit> plan_units(const std::vector<Planned>& plan, const RunOptio
                                 const ShardSpec& shard = {});
 
 // The stable key of a case, what --expect patterns and JUnit names match:
-// "EXPERIMENT/WIDTHxHEIGHT/name=value/..." over the parameters the case uses, in the experiment's order.
+// "EXPERIMENT/WIDTHxHEIGHT/name=value/..." over the parameters the case uses, in the experiment's order,
+// but `fault`: an injected fault is a broken run of the same case, which a baseline must catch.
 std::string case_key(const std::string& experiment, Resolution res, const ParamSet& params);
 
 }  // namespace oitbench

@@ -16,6 +16,7 @@
 #include "core/groups.hpp"
 #include "core/interrupt.hpp"
 #include "core/isolation.hpp"
+#include "core/outcomes.hpp"
 #include "core/plan.hpp"
 #include "core/progress.hpp"
 #include "core/rows.hpp"
@@ -98,6 +99,7 @@ class Runner {
     // Expand every request first so progress can say "case i of n"; with --shard, this shard's units only.
     const std::vector<Planned> plan = make_plan(registry_, requests, opt_, !gl_.is_software_renderer());
     const std::vector<RunUnit> units = plan_units(plan, opt_, opt_.shard);
+    note_grid(plan);
     size_t total_cases = 0;
     for (const auto& u : units) total_cases += u.rows();
     progress_ = std::make_unique<Progress>(opt_.progress, total_cases);
@@ -135,12 +137,13 @@ class Runner {
     size_t cases = 0;
     // Without a context the entry's own sizes (a software renderer's).
     const std::vector<Planned> plan = make_plan(registry_, requests, opt_, false);
+    note_grid(plan);
     for (const auto& u : plan_units(plan, opt_, opt_.shard))
       for (size_t i = 0; i < u.group.cases.size(); ++i) {
         if (u.group.shadow[i]) continue;
         CaseRecord rec = new_record(u.group.cases[i], plan[u.planned]);
         rec.fail(Status::Unsupported, e.what());
-        write(*writer_, summary_rows(row_settings(plan[u.planned]), rec));
+        finish_case(row_settings(plan[u.planned]), rec);
         ++cases;
       }
     std::fprintf(stderr, "oitbench: %s: %zu case(s) unsupported -> %s\n", e.what(), cases,
@@ -482,11 +485,43 @@ class Runner {
   }
 
   void finish_case(const RowSettings& settings, const CaseRecord& rec) {
-    write(*writer_, summary_rows(settings, rec));
+    const auto rows = summary_rows(settings, rec);
+    write(*writer_, rows);
+    for (const auto& row : rows)
+      if (row.count("pass") && row.at("pass") == "total") add_outcome(rec.key, row);
     ++counts_[rec.status];
     ++cases_done_;
   }
 
+  // Every case of the whole grid, every shard's: what an --expect pattern may match.
+  void note_grid(const std::vector<Planned>& plan) {
+    for (const auto& u : plan_units(plan, opt_))
+      for (size_t i = 0; i < u.group.cases.size(); ++i)
+        if (!u.group.shadow[i])
+          grid_keys_.push_back(case_key(plan[u.planned].exp->name(), plan[u.planned].res, u.group.cases[i]));
+  }
+
+  // A case's outcome from its total row (--expect, --junit).
+  void add_outcome(const std::string& key, const Row& row) {
+    Outcome o;
+    o.key = key;
+    o.experiment = row.count("experiment") ? row.at("experiment") : "";
+    for (Status s : kAllStatuses)
+      if (row.count("status") && row.at("status") == status_name(s)) o.status = s;
+    o.reason = row.count("reason") ? row.at("reason") : "";
+    if (row.count("median_ms") && !row.at("median_ms").empty()) try {
+        o.median_ms = std::stod(row.at("median_ms"));
+      } catch (const std::exception&) {
+      }
+    outcomes_.push_back(std::move(o));
+  }
+
+ public:
+  const std::vector<Outcome>& outcomes() const { return outcomes_; }
+  const std::vector<std::string>& grid_keys() const { return grid_keys_; }
+  const Row& run_columns() const { return run_columns_; }
+
+ private:
   // A case in a child process (`oitbench run EXP --set k=v ... --isolate never`), killed by the
   // watchdog when it exceeds --timeout: spinlock variants can hang a real GPU.
   void run_isolated(const Planned& p, const ParamSet& params) {
@@ -536,8 +571,8 @@ class Runner {
     watchdog_->heartbeat();
     bool copied = false;
     if (outcome.kind == ChildOutcome::Kind::Exited || outcome.kind == ChildOutcome::Kind::Signalled)
-      copied = copy_rows(out, *writer_, true) > 0;
-    if (copied && raw_writer_) copy_rows(raw, *raw_writer_, false);
+      copied = copy_rows(out, *writer_, case_key(exp.name(), p.res, params)) > 0;
+    if (copied && raw_writer_) copy_rows(raw, *raw_writer_, "");
     if (!copied && outcome.kind != ChildOutcome::Kind::Stopped) {
       CaseRecord rec = new_record(params, p);
       switch (outcome.kind) {
@@ -557,7 +592,8 @@ class Runner {
     progress_->report(exp.name(), cases_done_, 0, 1, 1);
   }
 
-  size_t copy_rows(const std::string& path, CsvWriter& into, bool count_cases) {
+  // `key`: the case's key, whose summary rows these are (empty: raw rows, not counted).
+  size_t copy_rows(const std::string& path, CsvWriter& into, const std::string& key) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return 0;
     std::stringstream ss;
@@ -571,7 +607,8 @@ class Runner {
       for (size_t j = 0; j < header.size() && j < rows[i].size(); ++j) row[header[j]] = rows[i][j];
       row["shard"] = opt_.shard.text();  // the child ran one case of this shard
       into.write(row);
-      if (count_cases && row["pass"] == "total") {
+      if (!key.empty() && row["pass"] == "total") {
+        add_outcome(key, row);
         for (Status s : kAllStatuses)
           if (row["status"] == status_name(s)) ++counts_[s];
         ++cases_done_;
@@ -593,6 +630,8 @@ class Runner {
   std::unique_ptr<CsvWriter> writer_, raw_writer_;
   Row run_columns_;
   std::map<Status, int> counts_;
+  std::vector<Outcome> outcomes_;       // every case this run wrote, in order
+  std::vector<std::string> grid_keys_;  // every case of the grid, every shard's
   size_t cases_done_ = 0;
   int group_index_ = 0;  // interleaved groups run so far (the raw rows' group)
   std::unique_ptr<Progress> progress_;
@@ -690,8 +729,12 @@ void check_requests(const Registry& registry, const std::vector<RunRequest>& req
 
 int run_experiments(Registry& registry, const std::vector<RunRequest>& requests, const RunOptions& options) {
   check_requests(registry, requests, options.quick, options.max_cases);
+  // A malformed baseline is a usage error before any work.
+  const std::vector<Expectation> baseline =
+      options.expect.empty() ? std::vector<Expectation>{} : load_expectations(options.expect);
   Runner runner(registry, options);
-  return runner.run(requests);
+  const int code = runner.run(requests);
+  return report_outcomes(options, baseline, runner.outcomes(), runner.grid_keys(), runner.run_columns(), code);
 }
 
 std::string default_shader_root() { return data_dir("shaders"); }

@@ -60,8 +60,11 @@ struct RunOptions {
   double timeout_s = 600;            // per case, watchdog
   size_t max_cases = kMaxGridCases;  // --max-cases: the grid's bound, checked before anything is built
   bool progress = true;
-  std::string preset_name;      // recorded in each row
-  ShardSpec shard;              // --shard: this shard's units only (core/plan.hpp); recorded in each row
+  std::string preset_name;  // recorded in each row
+  ShardSpec shard;          // --shard: this shard's units only (core/plan.hpp); recorded in each row
+  // Fleets and CI (core/outcomes.hpp): the expected-status baseline, where to write the one this run
+  // would expect, the JUnit report; empty: none.
+  std::string expect, write_expect, junit;
   std::string shader_root;      // where shaders/ lives
   bool program_cache = true;    // reuse linked programs (glGetProgramBinary) across runs
   bool isolated_child = false;  // this process runs one case for a parent: no summary line
@@ -85,7 +88,8 @@ RunSize resolve_run_size(const RunRequest& request, const Experiment& experiment
 void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick = false,
                     size_t max_cases = kMaxGridCases);
 
-// Returns the process exit code: 0 finished, 1 errors or timeouts or interrupted (130), 3 nothing ran (unsupported).
+// Returns the process exit code: 0 finished, 1 errors or timeouts or interrupted (130), 3 nothing ran (unsupported);
+// with --expect, 0 when every outcome was expected, 4 when one was not (130 interrupted stays).
 int run_experiments(Registry& registry, const std::vector<RunRequest>& requests, const RunOptions& options);
 
 std::string default_shader_root();
