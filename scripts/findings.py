@@ -41,7 +41,8 @@ PAPER_SCENE = tables.PAPER_SCENE  # our stand-ins for the papers' models
 # The exact techniques that run as shaders (not CPU-NATIVE), as Knowles 2014 lists them.
 EXACT_SHADER = techniques.exact_in_paper_order(("BASE", "G", "CS", "BMA"))
 PER_PIXEL_ARRAY = ("MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT")
-BLENDS = ("WBOIT", "unsorted")
+# The approximate techniques that blend every fragment instead of keeping nodes per pixel (WBOIT, unsorted).
+BLENDS = tuple(t["name"] for t in techniques.TABLE if t["family"] == "approximate" and "nodes" not in t["params"])
 
 
 # ------------------------------------------------------------------------------------------- reading
