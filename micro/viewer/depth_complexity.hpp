@@ -1,6 +1,6 @@
 #pragma once
 // The viewer's false-colour depth complexity (Z): each pixel's captured fragments counted by
-// walking its storage through the FRAG_* API (shaders/oit/storage/), shown blue (1 fragment) ->
+// walking its storage through the FRAG_* API (shaders/capture/), shown blue (1 fragment) ->
 // green -> red (the peak) on a log scale, black where nothing landed. The same pass gives the
 // overlay's fragment total and peak depth.
 #include "gl/gl_objects.hpp"

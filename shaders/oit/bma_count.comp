@@ -2,9 +2,10 @@
 // host skips the intervals with no pixels. One invocation per pixel; histogram[i] for interval i.
 #include "../common/oitbench.glsl"
 #define STORAGE_COUNTS
-#include "storage/fragments.glsl"
+#include "../capture/fragment_storage.glsl"
+#include "bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 0) buffer Histogram { uint histogram[32]; };
+layout(std430, binding = BMA_HISTOGRAM_BINDING) buffer Histogram { uint histogram[32]; };
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(fragCounts)))) return;

@@ -2,7 +2,7 @@
 // draw's stencil reference), so that interval's resolve program runs only on its pixels.
 #include "../common/oitbench.glsl"
 #define STORAGE_COUNTS
-#include "storage/fragments.glsl"
+#include "../capture/fragment_storage.glsl"
 uniform uint lo, hi;
 void main() {
   uint n = imageLoad(fragCounts, ivec2(gl_FragCoord.xy)).r;

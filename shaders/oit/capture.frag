@@ -2,7 +2,7 @@
 // Early fragment tests keep the atomics of fragments an opaque depth test would reject from running.
 #include "../common/oitbench.glsl"
 #define STORAGE_CAPTURE
-#include "storage/fragments.glsl"
+#include "../capture/fragment_storage.glsl"
 #include "shade.glsl"
 layout(early_fragment_tests) in;
 in vec4 vColour;

@@ -7,10 +7,11 @@
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
 #include "../common/oitbench.glsl"
-#include "storage/fragments.glsl"
+#include "../capture/fragment_storage.glsl"
+#include "bindings.h"
 
 layout(local_size_x = CS_GROUP_X, local_size_y = CS_GROUP_Y) in;
-layout(binding = 4, rgba32f) uniform writeonly image2D resolved;
+layout(binding = OIT_RESOLVED_IMAGE_UNIT, rgba32f) uniform writeonly image2D resolved;
 #include "backdrop.glsl"
 vec3 backdrop;  // behind this pixel's layers: resolve_pixel() blends onto it
 uniform int zero;  // always 0 (fault hooks)

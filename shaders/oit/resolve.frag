@@ -6,7 +6,7 @@
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
 #include "../common/oitbench.glsl"
-#include "storage/fragments.glsl"
+#include "../capture/fragment_storage.glsl"
 
 // Early tests: BMA's stencil mask must stop an interval's program before it runs on the other
 // intervals' pixels; without this a driver may test the stencil after the shader (it reads

@@ -4,7 +4,7 @@
 // slice (the GPU's own slice key of its primitive) and rebuilds the map from the same slices.
 #include "../common/oitbench.glsl"
 #define STORAGE_CAPTURE
-#include "../oit/storage/fragments.glsl"
+#include "../capture/fragment_storage.glsl"
 #include "opacity.glsl"
 layout(early_fragment_tests) in;
 in vec4 vColour;

@@ -1,7 +1,7 @@
 // The viewer's depth complexity: each pixel's captured fragments, counted by walking its storage
 // through the FRAG_* API only (so any storage layout works), plus the peak and the total.
 #include "../common/oitbench.glsl"
-#include "../oit/storage/fragments.glsl"
+#include "../capture/fragment_storage.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 4, r32ui) uniform writeonly uimage2D depthCounts;
 layout(std430, binding = 1) buffer DepthStats {

@@ -1,5 +1,5 @@
 #pragma once
-// Per-pixel linked lists, PPLL (Yang et al. 2010; shaders/oit/storage/linked_list.glsl): a global
+// Per-pixel linked lists, PPLL (Yang et al. 2010; shaders/capture/fragment_lists.glsl): a global
 // atomic counter allocates nodes, imageAtomicExchange on r32ui head pointers links them, nodes are
 // the fragment format's words (uvec2 packed RGBA8 colour, depth bits by default) with next pointers in a parallel
 // buffer. The node pool is sized from the previous frame's count; a frame whose counter passes the pool is rendered

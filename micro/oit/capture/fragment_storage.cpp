@@ -138,7 +138,7 @@ size_t chunks_for(size_t texels) {
 
 GLuint chunk_unit(GLuint first_unit, ChunkSlot slot, size_t chunk) {
   if (chunk == 0) return first_unit;
-  return 8 + static_cast<GLuint>((chunk - 1) * 3) + static_cast<GLuint>(slot);
+  return CAPTURE_CHUNK_UNIT_BASE + static_cast<GLuint>((chunk - 1) * 3) + static_cast<GLuint>(slot);
 }
 
 Defines chunk_defines(size_t chunks, unsigned shift) {

@@ -2,7 +2,7 @@
 // Where the exact techniques keep every captured fragment (Knowles, Leach, Zambetta 2014, section
 // 2.2): per-pixel linked lists, PPLL (fragment_lists.hpp), or packed per-pixel arrays, PPPA
 // (packed_arrays.hpp: count pass, prefix sum, fill). Shaders read either through the one API of
-// shaders/oit/storage/fragments.glsl, selected by the storage's defines(); the resolves, the sorts
+// shaders/capture/fragment_storage.glsl, selected by the storage's defines(); the resolves, the sorts
 // and the CPU side are written once.
 #include <array>
 #include <cstddef>
@@ -15,17 +15,19 @@
 #include "core/registry.hpp"
 #include "gl/gl_objects.hpp"
 #include "gl/shader.hpp"
+#include "shaders/capture/bindings.h"
 
 namespace oitbench::oit {
 
 inline constexpr unsigned kListEnd = 0xFFFFFFFFu;
 
-// Image units and bindings of shaders/oit/storage/*.glsl. Unit 1 (the fragments) is shared; unit 5
+// Image units and bindings of shaders/capture/*.glsl. Unit 1 (the fragments) is shared; unit 5
 // holds the depths of the wide colour formats (docs/precision.md).
-inline constexpr GLuint kHeadsUnit = 0, kNodesUnit = 1, kNextUnit = 2, kCountsUnit = 3, kNodeDepthUnit = 5,
-                        kCounterBinding = 0, kOffsetsBinding = 2;
+inline constexpr GLuint kHeadsUnit = CAPTURE_HEADS_UNIT, kNodesUnit = CAPTURE_NODES_UNIT, kNextUnit = CAPTURE_NEXT_UNIT,
+                        kCountsUnit = CAPTURE_COUNTS_UNIT, kNodeDepthUnit = CAPTURE_NODE_DEPTH_UNIT,
+                        kCounterBinding = CAPTURE_COUNTER_BINDING, kOffsetsBinding = CAPTURE_OFFSETS_BINDING;
 
-// What one captured fragment keeps (the frag_colour and frag_depth parameters; shaders/oit/storage/
+// What one captured fragment keeps (the frag_colour and frag_depth parameters; shaders/capture/
 // fragments.glsl is written once against them):
 //   colour rgba8    packUnorm4x8 (the papers' packing; 8-byte nodes with the depth)
 //          rgba16f  two packHalf2x16 words, depth apart (12 bytes)
@@ -121,7 +123,7 @@ class FragmentStorage {
  public:
   virtual ~FragmentStorage() = default;
   virtual CaptureStorage kind() const = 0;
-  // For every shader that includes storage/fragments.glsl: selects this layout.
+  // For every shader that includes fragment_storage.glsl: selects this layout.
   virtual Defines defines() const = 0;
   // One entry per pass of the geometry a capture takes: what that pass's program adds to defines().
   virtual std::vector<Defines> capture_passes() const = 0;

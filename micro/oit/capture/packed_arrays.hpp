@@ -1,6 +1,6 @@
 #pragma once
 // Packed per-pixel arrays, PPPA (Knowles 2014 section 2.2, after Peeper's linearized A-buffer;
-// shaders/oit/storage/linearized.glsl): a count pass of the geometry, an exclusive prefix sum of
+// shaders/capture/packed_arrays.glsl): a count pass of the geometry, an exclusive prefix sum of
 // the per-pixel counts (prefix_sum.hpp) whose total sizes the fragment buffer before anything is
 // stored, and a fill pass that puts each fragment in its pixel's next slot. No next pointers (a
 // fragment's 8 bytes instead of 12 in RGBA8), no global counter to contend on, never an overflow: the price

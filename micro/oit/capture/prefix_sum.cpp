@@ -2,11 +2,14 @@
 
 #include <string>
 
+#include "shaders/capture/bindings.h"
+
 namespace oitbench::oit {
 
 namespace {
-constexpr size_t kBlock = 1024;  // SCAN_BLOCK in shaders/oit/prefix_sum.comp: 256 invocations x 4
-constexpr GLuint kInBinding = 0, kOutBinding = 1, kSumsBinding = 2, kCountsUnit = 3;
+constexpr size_t kBlock = 1024;  // SCAN_BLOCK in shaders/capture/prefix_sum.comp: 256 invocations x 4
+constexpr GLuint kInBinding = SCAN_IN_BINDING, kOutBinding = SCAN_OUT_BINDING, kSumsBinding = SCAN_BLOCK_SUMS_BINDING,
+                 kCountsUnit = SCAN_COUNTS_UNIT;
 
 void set_count(GLuint program, size_t n) {
   glProgramUniform1ui(program, glGetUniformLocation(program, "count"), static_cast<GLuint>(n));
@@ -16,9 +19,9 @@ void set_count(GLuint program, size_t n) {
 PrefixSum::PrefixSum(const CaseContext& ctx, size_t count)
     : count_(count),
       from_counts_(
-          ctx.build({{GL_COMPUTE_SHADER, "oit/prefix_sum.comp"}}, {{"SCAN_BLOCKS", ""}, {"SCAN_FROM_COUNTS", ""}})),
-      from_buffer_(ctx.build({{GL_COMPUTE_SHADER, "oit/prefix_sum.comp"}}, {{"SCAN_BLOCKS", ""}})),
-      add_(ctx.build({{GL_COMPUTE_SHADER, "oit/prefix_sum.comp"}}, {{"SCAN_ADD", ""}})) {
+          ctx.build({{GL_COMPUTE_SHADER, "capture/prefix_sum.comp"}}, {{"SCAN_BLOCKS", ""}, {"SCAN_FROM_COUNTS", ""}})),
+      from_buffer_(ctx.build({{GL_COMPUTE_SHADER, "capture/prefix_sum.comp"}}, {{"SCAN_BLOCKS", ""}})),
+      add_(ctx.build({{GL_COMPUTE_SHADER, "capture/prefix_sum.comp"}}, {{"SCAN_ADD", ""}})) {
   GLint max_groups = 0;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
   if ((count + kBlock - 1) / kBlock > static_cast<size_t>(max_groups))

@@ -1,5 +1,5 @@
 #pragma once
-// An exclusive prefix sum on the GPU (shaders/oit/prefix_sum.comp): blocks of 1024 elements scanned
+// An exclusive prefix sum on the GPU (shaders/capture/prefix_sum.comp): blocks of 1024 elements scanned
 // by one work group each, their totals scanned the same way one level up, until one block holds
 // everything, then each level's scanned totals added back down. PPPA's capture uses it to turn the
 // per-pixel counts into each pixel's first slot (packed_arrays.hpp).

@@ -31,6 +31,7 @@
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
 #include "oit/techniques.hpp"
+#include "shaders/oit/bindings.h"
 
 namespace oitbench::oit {
 
@@ -225,7 +226,7 @@ class ExactCase final : public OitCase {
     std::vector<unsigned> hist(32, 0);
     glNamedBufferSubData(histogram_.get(), 0, 32 * sizeof(unsigned), hist.data());
     lists_->bind();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, histogram_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BMA_HISTOGRAM_BINDING, histogram_.get());
     glUseProgram(count_.get());
     glDispatchCompute((width_ + 7) / 8, (height_ + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -9,11 +9,12 @@
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
 #include "oit/capture/fragment_storage.hpp"
+#include "shaders/oit/bindings.h"
 
 namespace oitbench::oit {
 
 // Image unit of the resolved colour (units 0-3 are the fragment storage's, see fragment_storage.hpp).
-inline constexpr GLuint kResolvedUnit = 4;
+inline constexpr GLuint kResolvedUnit = OIT_RESOLVED_IMAGE_UNIT;
 
 class ComputeResolve {
  public:

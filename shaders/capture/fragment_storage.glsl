@@ -1,9 +1,9 @@
 // Every captured fragment of every pixel, behind one small API, so the capture, the resolves and
 // the sorts never touch the layout (Knowles 2014, section 2.2). The host picks the layout with an
 // injected define (micro/oit/capture/fragment_storage.hpp):
-//   (default)     per-pixel linked lists, PPLL (storage/linked_list.glsl)
+//   (default)     per-pixel linked lists, PPLL (fragment_lists.glsl)
 //   STORAGE_PPPA  packed per-pixel arrays, PPPA: a count pass, a prefix sum, a fill pass
-//                 (storage/linearized.glsl)
+//                 (packed_arrays.glsl)
 // The API:
 //   FRAG_BEGIN(p)      the first fragment of pixel p (call it before the others for that pixel)
 //   FRAG_VALID(node)   false past the pixel's last fragment
@@ -18,6 +18,7 @@
 // buffer's limit), so they differ only in how a pixel finds its fragments.
 #ifndef OIT_STORAGE_FRAGMENTS
 #define OIT_STORAGE_FRAGMENTS
+#include "bindings.h"
 
 // The fragment's format (micro/oit/capture/fragment_storage.hpp, docs/precision.md), one define of each:
 //   FRAG_COLOUR_RGBA8 (default)  FRAG_T uvec2 (packUnorm4x8 colour, depth bits): the papers' 64-bit node
@@ -76,17 +77,17 @@
 #endif
 #endif
 // FRAG_DECLARE_CHUNK_(slot, format, name, chunk): the image of chunk `chunk` > 0 of one array.
-#define FRAG_DECLARE_CHUNK_(slot, format, name, chunk) layout(binding = 8 + 3 * (chunk - 1) + slot, format) uniform uimageBuffer name;
+#define FRAG_DECLARE_CHUNK_(slot, format, name, chunk) layout(binding = CAPTURE_CHUNK_UNIT_BASE + 3 * (chunk - 1) + slot, format) uniform uimageBuffer name;
 
 #if defined(FRAG_COLOUR_RGBA32F)
 #define FRAG_DATA_FORMAT rgba32ui
 #else
 #define FRAG_DATA_FORMAT rg32ui
 #endif
-layout(binding = 1, FRAG_DATA_FORMAT) uniform uimageBuffer nodeData;
+layout(binding = CAPTURE_NODES_UNIT, FRAG_DATA_FORMAT) uniform uimageBuffer nodeData;
 #if defined(FRAG_COLOUR_RGBA32F) || defined(FRAG_COLOUR_RGBA16F)
 #define FRAG_WIDE
-layout(binding = 5, r32ui) uniform uimageBuffer nodeDepth;
+layout(binding = CAPTURE_NODE_DEPTH_UNIT, r32ui) uniform uimageBuffer nodeDepth;
 #endif
 #if FRAG_CHUNKS > 1
 FRAG_DECLARE_CHUNK_(0, FRAG_DATA_FORMAT, nodeData_1, 1)
@@ -218,5 +219,5 @@ bool frag_fault_drop(ivec2 p) { return false; }
 
 // The shader library expands an include once, where it first appears, whatever #if surrounds it:
 // each layout file guards its own body.
-#include "linked_list.glsl"
-#include "linearized.glsl"
+#include "fragment_lists.glsl"
+#include "packed_arrays.glsl"

@@ -1,5 +1,5 @@
 // Packed per-pixel arrays, PPPA (Knowles 2014 section 2.2; Maule et al.'s dynamic fragment
-// buffer): the layout of storage/fragments.glsl under STORAGE_PPPA (bindings:
+// buffer): the layout of fragment_storage.glsl under STORAGE_PPPA (bindings:
 // micro/oit/capture/packed_arrays.hpp). A capture is two passes of the geometry:
 //   STORAGE_PPPA_COUNT  counts each pixel's fragments (fragCounts)
 //   (host)              an exclusive prefix sum of the counts gives each pixel's first slot
@@ -11,8 +11,8 @@
 #if defined(STORAGE_PPPA) && !defined(OIT_STORAGE_LINEARIZED)
 #define OIT_STORAGE_LINEARIZED
 
-layout(binding = 3, r32ui) uniform coherent uimage2D fragCounts;
-layout(std430, binding = 2) coherent buffer FragOffsets { uint fragOffsets[]; };
+layout(binding = CAPTURE_COUNTS_UNIT, r32ui) uniform coherent uimage2D fragCounts;
+layout(std430, binding = CAPTURE_OFFSETS_BINDING) coherent buffer FragOffsets { uint fragOffsets[]; };
 
 uint frag_pixel_index(ivec2 p) { return uint(p.y * imageSize(fragCounts).x + p.x); }
 

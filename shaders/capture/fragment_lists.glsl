@@ -1,12 +1,12 @@
-// Per-pixel linked lists, PPLL (Yang et al. 2010), the default layout of storage/fragments.glsl
+// Per-pixel linked lists, PPLL (Yang et al. 2010), the default layout of fragment_storage.glsl
 // (bindings: micro/oit/capture/fragment_lists.hpp): a global atomic counter allocates nodes, an atomic
 // exchange on the pixel's head pointer links them; next pointers live in a parallel buffer.
 #if !defined(STORAGE_PPPA) && !defined(OIT_STORAGE_LINKED_LIST)
 #define OIT_STORAGE_LINKED_LIST
 
-layout(binding = 0, r32ui) uniform coherent uimage2D headPointers;
-layout(binding = 2, r32ui) uniform uimageBuffer nodeNext;
-#if FRAG_CHUNKS > 1  // past one texel buffer: the next pointers' chunks (storage/fragments.glsl)
+layout(binding = CAPTURE_HEADS_UNIT, r32ui) uniform coherent uimage2D headPointers;
+layout(binding = CAPTURE_NEXT_UNIT, r32ui) uniform uimageBuffer nodeNext;
+#if FRAG_CHUNKS > 1  // past one texel buffer: the next pointers' chunks (fragment_storage.glsl)
 FRAG_DECLARE_CHUNK_(1, r32ui, nodeNext_1, 1)
 #endif
 #if FRAG_CHUNKS > 2
@@ -36,7 +36,7 @@ void frag_set_next(uint node, uint next) {
 #endif
 }
 #ifdef STORAGE_COUNTS
-layout(binding = 3, r32ui) uniform uimage2D fragCounts;
+layout(binding = CAPTURE_COUNTS_UNIT, r32ui) uniform uimage2D fragCounts;
 #endif
 
 #define LIST_END 0xFFFFFFFFu
@@ -46,7 +46,7 @@ layout(binding = 3, r32ui) uniform uimage2D fragCounts;
 #define FRAG_SCREEN_SIZE() imageSize(headPointers)
 
 #ifdef STORAGE_CAPTURE
-layout(binding = 0, offset = 0) uniform atomic_uint fragCounter;
+layout(binding = CAPTURE_COUNTER_BINDING, offset = 0) uniform atomic_uint fragCounter;
 uniform uint poolSize;  // nodes past the pool are counted but not stored: the host renders again
 
 void store_fragment(ivec2 p, vec4 rgba, float depth) {

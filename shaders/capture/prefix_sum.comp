@@ -9,16 +9,17 @@
 // scanIn and scanOut may be the same buffer: an invocation reads its four elements before the
 // barrier and writes only those four after it.
 #include "../common/oitbench.glsl"
+#include "bindings.h"
 layout(local_size_x = 256) in;
-layout(std430, binding = 0) buffer ScanIn { uint scanIn[]; };
-layout(std430, binding = 1) buffer ScanOut { uint scanOut[]; };
-layout(std430, binding = 2) buffer BlockSums { uint blockSums[]; };
+layout(std430, binding = SCAN_IN_BINDING) buffer ScanIn { uint scanIn[]; };
+layout(std430, binding = SCAN_OUT_BINDING) buffer ScanOut { uint scanOut[]; };
+layout(std430, binding = SCAN_BLOCK_SUMS_BINDING) buffer BlockSums { uint blockSums[]; };
 uniform uint count;
 const uint SCAN_BLOCK = 1024u;
 
 #if defined(SCAN_BLOCKS)
 #ifdef SCAN_FROM_COUNTS
-layout(binding = 3, r32ui) uniform readonly uimage2D fragCounts;
+layout(binding = SCAN_COUNTS_UNIT, r32ui) uniform readonly uimage2D fragCounts;
 uint element(uint i) {
   int w = imageSize(fragCounts).x;
   return i < count ? imageLoad(fragCounts, ivec2(int(i) % w, int(i) / w)).r : 0u;
