@@ -13,6 +13,7 @@ PACKAGES=(
   libassimp-dev assimp-testmodels                     # model loading and the stand-in scenes
   libgtest-dev googletest                             # tests
   python3 python3-matplotlib                          # figures, tables, comparisons
+  slurm-wlm munge                                     # tests/fleet: a single-node Slurm cluster runs a sharded array
   chromium                                            # the report page is tested in headless chromium
   patchelf                                            # scripts/bundle.sh: the bundled binary's rpath
 )
