@@ -12,7 +12,7 @@ PACKAGES=(
   libglm-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libassimp-dev assimp-testmodels                     # model loading and the stand-in scenes
   libgtest-dev googletest                             # tests
-  python3 python3-matplotlib                          # figures, tables, comparisons
+  python3 python3-matplotlib python3-yaml             # figures, tables, comparisons; deploy/ recipes parsed in tests
   slurm-wlm munge                                     # tests/fleet: a single-node Slurm cluster runs a sharded array
   chromium                                            # the report page is tested in headless chromium
   patchelf                                            # scripts/bundle.sh: the bundled binary's rpath
