@@ -33,23 +33,56 @@ def shard_of(env):
     return line.split("shard ")[2].split(" ")[0], line, proc.stdout
 
 
+def container_env(job):
+    """The container's env as a dict that writes through to the manifest."""
+    container = job["spec"]["template"]["spec"]["containers"][0]
+    env = {e["name"]: e["value"] for e in container["env"]}
+
+    class Through(dict):
+        def update(self, **kw):
+            super().update(**kw)
+            container["env"] = [{"name": k, "value": v} for k, v in self.items()]
+    return Through(env)
+
+
+def kubernetes_problems(job):
+    """What is wrong with an Indexed Job manifest for oitbench (empty: nothing)."""
+    problems = []
+    if (job.get("apiVersion"), job.get("kind")) != ("batch/v1", "Job"):
+        problems.append("not a batch/v1 Job")
+    spec = job["spec"]
+    if spec.get("completionMode") != "Indexed":
+        problems.append("completionMode is not Indexed")
+    container = spec["template"]["spec"]["containers"][0]
+    env = container_env(job)
+    if "graphics" not in env.get("NVIDIA_DRIVER_CAPABILITIES", "").split(","):
+        problems.append("NVIDIA_DRIVER_CAPABILITIES lacks graphics")
+    if int(env.get("OITBENCH_SHARD_COUNT", -1)) != spec.get("completions"):
+        problems.append("OITBENCH_SHARD_COUNT is not completions")
+    command = " ".join(container.get("command", []) + container.get("args", []))
+    if "--shard auto" not in command or "$JOB_COMPLETION_INDEX" not in command:
+        problems.append("the command does not run --shard auto into a file per index")
+    if "/results" not in {m["mountPath"] for m in container.get("volumeMounts", [])}:
+        problems.append("no /results volume")
+    return problems
+
+
 class Kubernetes(unittest.TestCase):
     def setUp(self):
         self.job = load("kubernetes", "oitbench-indexed-job.yaml")
 
     def test_an_indexed_job_with_graphics_and_the_shard_count(self):
-        self.assertEqual((self.job["apiVersion"], self.job["kind"]), ("batch/v1", "Job"))
-        spec = self.job["spec"]
-        self.assertEqual(spec["completionMode"], "Indexed")
-        container = spec["template"]["spec"]["containers"][0]
-        env = {e["name"]: e["value"] for e in container["env"]}
-        self.assertIn("graphics", env["NVIDIA_DRIVER_CAPABILITIES"].split(","))
-        self.assertEqual(int(env["OITBENCH_SHARD_COUNT"]), spec["completions"])
-        command = " ".join(container["command"] + container["args"])
-        self.assertIn("--shard auto", command)
-        self.assertIn("$JOB_COMPLETION_INDEX", command)
-        mounts = {m["mountPath"] for m in container["volumeMounts"]}
-        self.assertIn("/results", mounts)
+        self.assertEqual(kubernetes_problems(self.job), [])
+
+    def test_the_check_fails_on_broken_manifests(self):
+        import copy
+        for break_it in (lambda j: j["spec"].update(completions=5),
+                         lambda j: j["spec"].update(completionMode="NonIndexed"),
+                         lambda j: container_env(j).update(NVIDIA_DRIVER_CAPABILITIES="compute,utility"),
+                         lambda j: j["spec"]["template"]["spec"]["containers"][0].update(args=["oitbench run"])):
+            broken = copy.deepcopy(self.job)
+            break_it(broken)
+            self.assertNotEqual(kubernetes_problems(broken), [])
 
     @unittest.skipUnless(oitbench_exe(), "needs the binary (OITBENCH_EXE)")
     def test_every_pod_runs_its_own_shard(self):
@@ -64,23 +97,45 @@ class Kubernetes(unittest.TestCase):
         self.assertEqual(seen, [f"{i}/{n}" for i in range(1, n + 1)])
 
 
+def gitlab_problems(job):
+    """What is wrong with the GitLab job for oitbench (empty: nothing)."""
+    problems = []
+    if not isinstance(job.get("parallel"), int) or job["parallel"] < 2:
+        problems.append("no parallel: N")
+    script = " ".join(job.get("script", []))
+    for needed in ("--shard auto", "--expect", "--junit results/shard-$CI_NODE_INDEX.xml", "--out"):
+        if needed not in script.replace('"', ""):
+            problems.append(f"the script lacks {needed}")
+    artifacts = job.get("artifacts", {})
+    if artifacts.get("when") != "always":
+        problems.append("artifacts not kept when the gate fails (when: always)")
+    if "results/" not in artifacts.get("paths", []):
+        problems.append("the CSVs are not artifacts")
+    if artifacts.get("reports", {}).get("junit") != "results/shard-*.xml":
+        problems.append("the JUnit reports are not artifacts:reports:junit")
+    if "graphics" not in job.get("variables", {}).get("NVIDIA_DRIVER_CAPABILITIES", ""):
+        problems.append("NVIDIA_DRIVER_CAPABILITIES lacks graphics")
+    return problems
+
+
 class GitLab(unittest.TestCase):
     def setUp(self):
         self.ci = load("gitlab", "oitbench.gitlab-ci.yml")
         self.job = self.ci["oitbench"]
 
     def test_parallel_junit_and_csv_artifacts_gated_on_the_baseline(self):
-        self.assertIsInstance(self.job["parallel"], int)
-        self.assertGreaterEqual(self.job["parallel"], 2)
-        script = " ".join(self.job["script"])
-        for needed in ("--shard auto", "--expect", "--junit", "--out"):
-            self.assertIn(needed, script)
-        artifacts = self.job["artifacts"]
-        self.assertEqual(artifacts["when"], "always")  # the reports of a failing (gated) job too
-        self.assertIn("results/", artifacts["paths"])
-        self.assertEqual(artifacts["reports"]["junit"], "results/shard-*.xml")
-        self.assertIn("results/shard-$CI_NODE_INDEX.xml", script)
-        self.assertIn("graphics", self.job["variables"]["NVIDIA_DRIVER_CAPABILITIES"])
+        self.assertEqual(gitlab_problems(self.job), [])
+
+    def test_the_check_fails_on_broken_jobs(self):
+        import copy
+        for break_it in (lambda j: j.pop("parallel"),
+                         lambda j: j["script"].__setitem__(-1, "build/oitbench run --preset default --shard auto"),
+                         lambda j: j["artifacts"].pop("when"),
+                         lambda j: j["artifacts"]["reports"].update(junit="report.xml"),
+                         lambda j: j["variables"].update(NVIDIA_DRIVER_CAPABILITIES="compute,utility")):
+            broken = copy.deepcopy(self.job)
+            break_it(broken)
+            self.assertNotEqual(gitlab_problems(broken), [])
 
     @unittest.skipUnless(oitbench_exe(), "needs the binary (OITBENCH_EXE)")
     def test_every_node_runs_its_own_shard_and_together_the_grid(self):
