@@ -11,6 +11,7 @@
 #include "gl/render_target.hpp"
 #include "oit/approx/approx.hpp"
 #include "oit/approx/approx_model.hpp"
+#include "oit/case_support.hpp"
 #include "oit/moments/moments.hpp"
 #include "oit/reference/geometric_reference.hpp"
 #include "oit/reference/image_compare.hpp"
@@ -32,12 +33,6 @@ namespace {
 constexpr double kModelTolerance = 3.0 / 255.0;
 constexpr int kSpinCap = 1 << 16;
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 }  // namespace
 
 std::vector<ParamSpec> approx_params() {

@@ -18,6 +18,7 @@
 #include "oit/approx/approx.hpp"
 #include "oit/capture/fragment_storage.hpp"
 #include "oit/capture/packed_arrays.hpp"
+#include "oit/case_support.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/peel/peel.hpp"
 #include "oit/reference/geometric_reference.hpp"
@@ -50,13 +51,6 @@ unsigned next_pow2(unsigned v) {
   unsigned p = 1;
   while (p < v) p <<= 1;
   return p;
-}
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
 }
 
 class ExactCase final : public OitCase {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "gl/render_target.hpp"
+#include "oit/case_support.hpp"
 #include "oit/moments/moment_model.hpp"
 #include "oit/moments/moments.hpp"
 #include "oit/reference/image_compare.hpp"
@@ -21,22 +22,6 @@ namespace {
 // a float solve can move a transmittance by a few 1/255 where the model's does not (measured on
 // the shipped scenes at 128x128: docs/experiments/oit.md). The tolerance is per channel.
 constexpr double kMomentTolerance = 4.0 / 255.0;
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-std::vector<float> rgb_of(const std::vector<float>& rgba) {
-  std::vector<float> rgb(rgba.size() / 4 * 3);
-  for (size_t p = 0; p < rgba.size() / 4; ++p)
-    for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = rgba[p * 4 + k];
-  return rgb;
-}
-void set_view_proj(const gl::Program& prog, const glm::mat4& vp) {
-  glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE, &vp[0][0]);
-}
 
 }  // namespace
 

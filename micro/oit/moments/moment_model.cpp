@@ -8,6 +8,8 @@
 #include <sstream>
 #include <thread>
 
+#include "oit/case_support.hpp"
+
 namespace oitbench::oit {
 
 namespace {
@@ -18,13 +20,6 @@ constexpr double kAbsorbanceMax = 10.0;
 constexpr double kWrappingZone = 0.1 * kPi;
 constexpr int kRootIterations = 200;
 constexpr int kRebiasSteps = 3;  // moment_math.glsl's REBIAS_STEPS
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 glm::vec4 unpack_colour(unsigned c) {
   return {static_cast<float>(c & 0xffu) / 255.0f, static_cast<float>((c >> 8) & 0xffu) / 255.0f,

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "gl/render_target.hpp"
+#include "oit/case_support.hpp"
 #include "oit/peel/peel.hpp"
 #include "oit/reference/image_compare.hpp"
 #include "oit/reference/image_io.hpp"
@@ -26,13 +27,6 @@ namespace {
 constexpr double kTolerance = 2.0 / 255.0;
 // max_layers=0 peels until the query finds nothing; this bounds a runaway loop all the same.
 constexpr unsigned kIterationCap = 1u << 20;
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 glm::dvec4 unpack(unsigned c) {
   return {(c & 0xffu) / 255.0, ((c >> 8) & 0xffu) / 255.0, ((c >> 16) & 0xffu) / 255.0, (c >> 24) / 255.0};

@@ -15,6 +15,7 @@
 #include "core/data_dirs.hpp"
 #include "core/files.hpp"
 #include "core/text_position.hpp"
+#include "oit/case_support.hpp"
 
 namespace oitbench::oit {
 
@@ -96,11 +97,6 @@ class Node {
   }
 
  private:
-  static std::string fmt(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  }
   const json& j_;
   const std::string& path_;
   const std::string& text_;

@@ -10,6 +10,7 @@
 
 #include "gl/render_target.hpp"
 #include "oit/capture/fragment_lists.hpp"
+#include "oit/case_support.hpp"
 #include "oit/scene/gpu_mesh.hpp"
 #include "shaders/shadow/bindings.h"
 
@@ -20,13 +21,6 @@ namespace {
 static_assert(sizeof(Vertex) % sizeof(float) == 0 && offsetof(Vertex, position) == 0,
               "slice_keys.comp reads oit::Vertex as floats, position first");
 constexpr int kVertexFloats = static_cast<int>(sizeof(Vertex) / sizeof(float));
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 gl::Buffer make_storage(GLsizeiptr bytes, const void* data = nullptr) {
   gl::Buffer b = gl::make_buffer();

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gl/render_target.hpp"
+#include "oit/case_support.hpp"
 #include "oit/moments/moment_model.hpp"
 #include "oit/moments/moments.hpp"
 #include "oit/reference/image_compare.hpp"
@@ -20,21 +21,6 @@ namespace {
 // The GPU sums each sample in float where the model sums in double: far below 1/255.
 constexpr double kStochasticTolerance = 2.0 / 255.0;
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-std::vector<float> rgb_of(const std::vector<float>& rgba) {
-  std::vector<float> rgb(rgba.size() / 4 * 3);
-  for (size_t p = 0; p < rgba.size() / 4; ++p)
-    for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = rgba[p * 4 + k];
-  return rgb;
-}
-void set_view_proj(const gl::Program& prog, const glm::mat4& vp) {
-  glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE, &vp[0][0]);
-}
 std::vector<GLint> sample_counts(GLenum format) {
   GLint n = 0;
   glGetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, format, GL_NUM_SAMPLE_COUNTS, 1, &n);

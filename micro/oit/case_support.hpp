@@ -1,0 +1,35 @@
+#pragma once
+// Small helpers every technique family's case (and the scene and model code that explains a
+// validation failure) shares, written once.
+#include <glm/glm.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gl/gl.hpp"
+#include "gl/gl_objects.hpp"
+
+namespace oitbench::oit {
+
+// A number in a reason or a log line: six significant digits.
+inline std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// The RGB of an RGBA image (the channels the error metrics compare).
+inline std::vector<float> rgb_of(const std::vector<float>& rgba) {
+  std::vector<float> rgb(rgba.size() / 4 * 3);
+  for (size_t p = 0; p < rgba.size() / 4; ++p)
+    for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = rgba[p * 4 + k];
+  return rgb;
+}
+
+// Sets a program's `viewProj` uniform.
+inline void set_view_proj(const gl::Program& prog, const glm::mat4& vp) {
+  glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE, &vp[0][0]);
+}
+
+}  // namespace oitbench::oit
