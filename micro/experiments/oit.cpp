@@ -35,6 +35,67 @@ std::vector<std::string> techniques_where(bool Technique::*member) {
   return out;
 }
 
+// The exact techniques' parameters (each scoped by the technique table to the techniques that read it).
+struct ExactParams {
+  ParamSpec block, pool, max_frags, cs_group, auto_cache, frag_colour, frag_depth, block_sort, order_check;
+};
+ExactParams exact_params() {
+  ParamSpec block{"block", "RBS block size MAX_REGISTERS (the paper: 32)", {"32"}, {"8"}, {"4", "8", "16", "32"}};
+  ParamSpec pool{"initial_pool",
+                 "first node pool in fragments (0: 4 per pixel); later frames size it from the last "
+                 "count",
+                 {"0"},
+                 {},
+                 {},
+                 ParamSpec::Kind::Integer,
+                 0,
+                 1e9};
+  ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)",
+                      {"0"},       {},
+                      {},          ParamSpec::Kind::Integer,
+                      0,           4096};
+  ParamSpec cs_group{"cs_group",
+                     "CS-* work group in pixels (8-wide rows by default; PLATFORM.md: a stream-form "
+                     "resolve was miscompiled with 4x4 groups on llvmpipe)",
+                     {"8x1"},
+                     {},
+                     {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}};
+  ParamSpec auto_cache{"bma_auto_cache",
+                       "BMA-AUTO: on reads and writes the per-driver choice cache "
+                       "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
+                       {"on"},
+                       {},
+                       {"on", "off"}};
+  ParamSpec frag_colour{"frag_colour",
+                        "what a captured fragment keeps of its colour: rgba8 (packUnorm4x8, the papers' 8-byte "
+                        "node with the depth), rgba16f (binary16, 12-byte node), rgba32f (float, 20-byte node); "
+                        "docs/precision.md",
+                        {"rgba8"},
+                        {},
+                        frag_colour_names()};
+  ParamSpec frag_depth{"frag_depth",
+                       "the depth a fragment is sorted by: window (gl_FragCoord.z) or view (float32 view-space "
+                       "distance along the view axis: relative precision 6e-8 at every distance)",
+                       {"window"},
+                       {},
+                       frag_depth_names()};
+  ParamSpec block_sort{"block_sort",
+                       "how RBS sorts each register block: insertion (RS, Knowles 2014 Listing 5: an insertion "
+                       "network with branches), bitonic or odd-even-merge (branchless register networks, fully "
+                       "unrolled: shaders/sorts/network.glsl)",
+                       {"insertion"},
+                       {},
+                       block_sort_names()};
+  ParamSpec order_check{"order_check",
+                        "IS and IMS resolves: on checks each pixel's list order while loading it and skips the "
+                        "sort of a list already far-to-near and reverses one near-to-far in O(n) (the lists "
+                        "of front-to-back or back-to-front submission); off sorts every list (the papers)",
+                        {"off"},
+                        {},
+                        {"off", "on"}};
+  return {block, pool, max_frags, cs_group, auto_cache, frag_colour, frag_depth, block_sort, order_check};
+}
+
 class OitExperiment final : public Experiment {
  public:
   std::string name() const override { return "oit"; }
@@ -71,32 +132,6 @@ class OitExperiment final : public Experiment {
         techniques_where(&Technique::in_default), techniques_where(&Technique::in_quick), technique_names()};
     ParamSpec detail{
         "detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"}, {"full", "small"}};
-    ParamSpec block{"block", "RBS block size MAX_REGISTERS (the paper: 32)", {"32"}, {"8"}, {"4", "8", "16", "32"}};
-    ParamSpec pool{"initial_pool",
-                   "first node pool in fragments (0: 4 per pixel); later frames size it from the last "
-                   "count",
-                   {"0"},
-                   {},
-                   {},
-                   ParamSpec::Kind::Integer,
-                   0,
-                   1e9};
-    ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)",
-                        {"0"},       {},
-                        {},          ParamSpec::Kind::Integer,
-                        0,           4096};
-    ParamSpec cs_group{"cs_group",
-                       "CS-* work group in pixels (8-wide rows by default; PLATFORM.md: a stream-form "
-                       "resolve was miscompiled with 4x4 groups on llvmpipe)",
-                       {"8x1"},
-                       {},
-                       {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}};
-    ParamSpec auto_cache{"bma_auto_cache",
-                         "BMA-AUTO: on reads and writes the per-driver choice cache "
-                         "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
-                         {"on"},
-                         {},
-                         {"on", "off"}};
     ParamSpec capture{"capture",
                       "where the captured fragments live (Knowles 2014 section 2.2): PPLL per-pixel linked "
                       "lists (one pass, global counter, re-rendered when the pool overflows); PPPA packed "
@@ -123,37 +158,24 @@ class OitExperiment final : public Experiment {
                                 ParamSpec::Kind::Integer,
                                 8,
                                 4096};
-    ParamSpec frag_colour{"frag_colour",
-                          "what a captured fragment keeps of its colour: rgba8 (packUnorm4x8, the papers' 8-byte "
-                          "node with the depth), rgba16f (binary16, 12-byte node), rgba32f (float, 20-byte node); "
-                          "docs/precision.md",
-                          {"rgba8"},
-                          {},
-                          frag_colour_names()};
-    ParamSpec frag_depth{"frag_depth",
-                         "the depth a fragment is sorted by: window (gl_FragCoord.z) or view (float32 view-space "
-                         "distance along the view axis: relative precision 6e-8 at every distance)",
-                         {"window"},
-                         {},
-                         frag_depth_names()};
-    ParamSpec block_sort{"block_sort",
-                         "how RBS sorts each register block: insertion (RS, Knowles 2014 Listing 5: an insertion "
-                         "network with branches), bitonic or odd-even-merge (branchless register networks, fully "
-                         "unrolled: shaders/sorts/network.glsl)",
-                         {"insertion"},
-                         {},
-                         block_sort_names()};
-    ParamSpec order_check{"order_check",
-                          "IS and IMS resolves: on checks each pixel's list order while loading it and skips the "
-                          "sort of a list already far-to-near and reverses one near-to-far in O(n) (the lists "
-                          "of front-to-back or back-to-front submission); off sorts every list (the papers)",
-                          {"off"},
-                          {},
-                          {"off", "on"}};
-    std::vector<ParamSpec> ps = {
-        scene,      view,     technique,  effects_param(), capture,           detail,      block,      pool,
-        max_frags,  cs_group, auto_cache, shadow_slices,   shadow_resolution, frag_colour, frag_depth, block_sort,
-        order_check};
+    ExactParams x = exact_params();
+    std::vector<ParamSpec> ps = {scene,
+                                 view,
+                                 technique,
+                                 effects_param(),
+                                 capture,
+                                 detail,
+                                 x.block,
+                                 x.pool,
+                                 x.max_frags,
+                                 x.cs_group,
+                                 x.auto_cache,
+                                 shadow_slices,
+                                 shadow_resolution,
+                                 x.frag_colour,
+                                 x.frag_depth,
+                                 x.block_sort,
+                                 x.order_check};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     for (auto& a : peel_params()) ps.push_back(std::move(a));
     for (auto& a : moment_params()) ps.push_back(std::move(a));
