@@ -178,6 +178,7 @@ void declare_run_grid(CLI::App& run, CliState& s) {
                  "The most cases one run may have (default 100000), checked before anything is built")
       ->transform(number(whole(1, 100000000)));
   run.add_option("--preset-name", o.preset_name, "Recorded in the preset column")->group("");
+  run.add_option("--run-id", o.run_id, "The run's UUID (set by the parent for an isolated case)")->group("");
   run.add_flag("--isolated-child", o.isolated_child, "Set by the parent for an isolated case")->group("");
 }
 
@@ -226,6 +227,11 @@ void declare_fleet(CLI::App& run, CliState& s) {
   run.add_option("--junit", s.run.options.junit,
                  "Also write a JUnit XML report: one testcase per case (time: its median), properties driver, "
                  "renderer, commit")
+      ->group(fleet);
+  run.add_option("--tag", s.run.tags,
+                 "KEY=VALUE, repeatable: a label every row carries in its tags column (a driver's commit, a machine "
+                 "pool, a CI job's address); keys start with a letter, A-Z a-z 0-9 _ . -")
+      ->take_all()
       ->group(fleet);
 }
 

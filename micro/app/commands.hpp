@@ -27,6 +27,7 @@ struct RunCommand {
   std::vector<std::string> experiments, sets;
   std::string preset, resolution, preset_dir;
   std::vector<std::string> baseline;  // --baseline NAME=VALUE: the speedups' baseline
+  std::vector<std::string> tags;      // --tag KEY=VALUE
 };
 int run_command(Registry& registry, RunCommand& c);
 

@@ -3,12 +3,16 @@
 
 #include "app/commands.hpp"
 #include "core/presets.hpp"
+#include "core/provenance.hpp"
 
 namespace oitbench::app {
 
 int run_command(Registry& registry, RunCommand& c) {
   RunOptions& ropt = c.options;
   if (!c.resolution.empty()) ropt.resolution = parse_resolution(c.resolution);
+  ropt.tags = parse_tags(c.tags);
+  if (!ropt.run_id.empty() && !is_run_id(ropt.run_id))
+    throw UsageError("--run-id " + ropt.run_id + ": give a UUID like 0f8fad5b-d9cb-469f-a165-70867728950e");
   const auto overrides = parse_set_options(c.sets);
   std::vector<RunRequest> requests;
   if (!c.preset.empty()) {

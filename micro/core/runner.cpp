@@ -68,7 +68,8 @@ std::vector<PassSample> per_repetition(const std::vector<PassSample>& all, int r
 
 class Runner {
  public:
-  Runner(Registry& registry, const RunOptions& options) : registry_(registry), opt_(options) {}
+  Runner(Registry& registry, const RunOptions& options)
+      : registry_(registry), opt_(options), run_id_(options.run_id.empty() ? new_run_id() : options.run_id) {}
 
   int run(const std::vector<RunRequest>& requests) {
     try {
@@ -88,7 +89,11 @@ class Runner {
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
     if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_), "--raw");
     run_columns_ = machine_columns();
+    const LlvmTarget llvm = llvm_target(gl_.renderer);
     run_columns_.insert({{"backend", ctx_->backend()},
+                         {"mesa_version", mesa_version(gl_.version)},
+                         {"llvm_version", llvm.llvm_version},
+                         {"llvm_vector_bits", llvm.vector_bits},
                          {"device", ctx_->device()},
                          {"driver", driver_slug(gl_)},
                          {"gl_vendor", gl_.vendor},
@@ -153,10 +158,22 @@ class Runner {
 
   // The run's columns that do not depend on the context: schema, code, machine, environment, preset.
   Row machine_columns() const {
+    const MachineIdentity m = this_machine();
     return {{"schema", std::to_string(kCsvSchema)},
+            {"run_id", run_id_},
+            {"tags", encode_tags(opt_.tags)},
             {"git_sha", git_sha()},
             {"hostname", host_name()},
             {"cpu_model", cpu_model()},
+            {"cpu_vendor", m.cpu_vendor},
+            {"cpu_family", m.cpu_family},
+            {"cpu_model_id", m.cpu_model_id},
+            {"cpu_stepping", m.cpu_stepping},
+            {"cpu_isa", m.cpu_isa},
+            {"cpu_count", std::to_string(m.cpu_count)},
+            {"memory_bytes", std::to_string(m.memory_bytes)},
+            {"kernel", m.kernel},
+            {"machine_id", m.fingerprint},
             {"lp_num_threads", lp_num_threads()},
             {"env", recorded_env()},
             {"preset", opt_.preset_name},
@@ -560,6 +577,8 @@ class Runner {
     args.insert(args.end(), {"--min-sample-ms", fmt_number(p.policy.min_sample_ms), "--max-sample-ms",
                              fmt_number(p.policy.max_sample_ms)});
     if (!opt_.preset_name.empty()) args.insert(args.end(), {"--preset-name", opt_.preset_name});
+    args.insert(args.end(), {"--run-id", run_id_});
+    for (const auto& [k, v] : opt_.tags) args.insert(args.end(), {"--tag", k + "=" + v});
     if (raw_writer_) args.insert(args.end(), {"--raw", raw});
     if (!opt_.interleave) args.push_back("--no-interleave");
     if (!opt_.program_cache) args.push_back("--no-program-cache");
@@ -619,6 +638,7 @@ class Runner {
 
   Registry& registry_;
   const RunOptions& opt_;
+  const std::string run_id_;
   SignalGuard signals_;
   std::unique_ptr<Context> ctx_;
   GlInfo gl_;

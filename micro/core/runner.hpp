@@ -60,8 +60,10 @@ struct RunOptions {
   double timeout_s = 600;            // per case, watchdog
   size_t max_cases = kMaxGridCases;  // --max-cases: the grid's bound, checked before anything is built
   bool progress = true;
-  std::string preset_name;  // recorded in each row
-  ShardSpec shard;          // --shard: this shard's units only (core/plan.hpp); recorded in each row
+  std::string preset_name;                  // recorded in each row
+  std::string run_id;                       // the run's UUID (an isolated child's: its parent's); empty: a new one
+  std::map<std::string, std::string> tags;  // --tag KEY=VALUE, in the tags column
+  ShardSpec shard;                          // --shard: this shard's units only (core/plan.hpp); recorded in each row
   // Fleets and CI (core/outcomes.hpp): the expected-status baseline, where to write the one this run
   // would expect, the JUnit report; empty: none.
   std::string expect, write_expect, junit;

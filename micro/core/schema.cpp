@@ -166,6 +166,31 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"cpu_model", T::Text, "", "/proc/cpuinfo model name", "run"},
       {"lp_num_threads", T::Text, "", "LP_NUM_THREADS (llvmpipe's rasterizer threads), or the core count", "run"},
       {"env", T::Text, "", "environment variables that change a driver's behaviour, NAME=VALUE;...", "run"},
+      {"run_id", T::Text, "",
+       "the invocation's UUID (version 4): every row and raw sample one oitbench run writes carries the same one",
+       "run"},
+      {"tags", T::Text, "",
+       "the --tag KEY=VALUE labels, KEY=VALUE;... sorted by key; '%', ';' and '=' in values as %25, %3B, %3D", "run"},
+      {"cpu_vendor", T::Text, "", "/proc/cpuinfo vendor_id (GenuineIntel, AuthenticAMD; arm: CPU implementer)", "run"},
+      {"cpu_family", T::Text, "", "/proc/cpuinfo cpu family", "run"},
+      {"cpu_model_id", T::Text, "", "/proc/cpuinfo model (the number; cpu_model is the name)", "run"},
+      {"cpu_stepping", T::Text, "", "/proc/cpuinfo stepping", "run"},
+      {"cpu_isa", T::Text, "",
+       "the ISA extensions a JIT such as llvmpipe's LLVM may use that the CPU has (sse4_2 avx avx2 fma avx512f ...), "
+       "space-separated in a fixed order",
+       "run"},
+      {"cpu_count", T::Integer, "", "logical CPUs in /proc/cpuinfo", "run"},
+      {"memory_bytes", T::Integer, "bytes", "MemTotal of /proc/meminfo", "run"},
+      {"kernel", T::Text, "", "uname release and version", "run"},
+      {"machine_id", T::Text, "",
+       "16 hex digits: a hash of the CPU's vendor, family, model, stepping, name, ISA extensions and count, the memory "
+       "and the kernel; two machines under one hostname and cpu_model differ here",
+       "run"},
+      {"mesa_version", T::Text, "", "Mesa NN.N.N from GL_VERSION, where the driver is Mesa's", "run"},
+      {"llvm_version", T::Text, "", "the LLVM llvmpipe JITs with, from GL_RENDERER (llvmpipe, zink over lavapipe)",
+       "run"},
+      {"llvm_vector_bits", T::Integer, "bits",
+       "the vector width llvmpipe targets, from GL_RENDERER (256: AVX2; LP_NATIVE_VECTOR_WIDTH changes it)", "run"},
       {"parameters", T::Text, "", "the parameter columns this case uses, NAME;NAME;...", "case"},
   };
   return cols;
@@ -197,6 +222,7 @@ const std::vector<ColumnSpec>& raw_base_columns() {
       {"timestamp_utc", T::Text, "", "when the row was written", "run"},
       {"preset", T::Text, "", "the preset the row ran under", "run"},
       {"shard", T::Text, "", "I/N: the shard the row ran in (--shard); empty: unsharded", "run"},
+      {"run_id", T::Text, "", "the invocation's UUID, as in the summary file", "run"},
   };
   return cols;
 }

@@ -16,7 +16,9 @@ class Registry;
 // gpu_*_start/end), occupancy's measured_occupancy and measured_occupancy_note. 4: samples sized by
 // their statistics and paired speedups (ci_lo_ms, ci_hi_ms, ci_pct, target_ci_pct, stop, sample_runs,
 // sample_units, baseline, speedup, speedup_ci_lo/hi), the new oit metrics (node_buffers, ...).
-// 5: shard (--shard I/N).
+// 5: shard (--shard I/N),
+// and run identity (run_id, also in raw rows; tags) and the machine's (cpu_vendor/family/model_id/stepping,
+// cpu_isa, cpu_count, memory_bytes, kernel, machine_id, mesa_version, llvm_version, llvm_vector_bits).
 inline constexpr int kCsvSchema = 5;
 
 enum class Status { Ok, Invalid, Unsupported, Error, Timeout };

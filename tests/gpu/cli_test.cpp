@@ -121,6 +121,55 @@ TEST(Cli, UsageErrorsExitTwoAndListTheValidNames) {
   EXPECT_EQ(run_oitbench({"run", "occupancy", "--resolution", "big"}).exit_code, 2);
 }
 
+// Issue 31: one run id per invocation in every row and raw sample (an isolated case's too), the tags
+// sorted and escaped, the machine's identity; a malformed or repeated --tag is a usage error naming it.
+TEST(Cli, EveryRowCarriesTheRunIdTagsAndMachine) {
+  auto dir = temp_dir("identity");
+  auto out = dir / "id.csv", raw = dir / "id_raw.csv";
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "size=1", "--tag", "pool=ci;nightly", "--tag",
+                         "mesa=22.3.6", "--out", out.string(), "--raw", raw.string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = read_csv_rows(out);
+  ASSERT_EQ(rows.size(), 2u);
+  const std::string id = rows[0]["run_id"];
+  EXPECT_TRUE(is_run_id(id)) << id;
+  for (auto& row : rows) {
+    EXPECT_EQ(row["run_id"], id);
+    EXPECT_EQ(row["tags"], "mesa=22.3.6;pool=ci%3Bnightly");
+    EXPECT_EQ(row["machine_id"].size(), 16u);
+    EXPECT_FALSE(row["cpu_count"].empty());
+    EXPECT_FALSE(row["memory_bytes"].empty());
+    EXPECT_FALSE(row["kernel"].empty());
+    if (contains(row["gl_renderer"], "llvmpipe")) {
+      EXPECT_FALSE(row["llvm_version"].empty());
+      EXPECT_FALSE(row["llvm_vector_bits"].empty());
+      EXPECT_TRUE(contains(row["mesa_version"], "Mesa ")) << row["mesa_version"];
+    }
+  }
+  for (auto& row : read_csv_rows(raw)) EXPECT_EQ(row["run_id"], id);
+  // A second invocation is another run; an isolated case's child writes its parent's id.
+  auto iso = dir / "iso.csv";
+  r = run_oitbench({"run", "occupancy", "--quick", "--set", "size=1", "--isolate", "always", "--tag", "k=v", "--out",
+                    iso.string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto iso_rows = read_csv_rows(iso);
+  ASSERT_EQ(iso_rows.size(), 2u);
+  EXPECT_NE(iso_rows[0]["run_id"], id);
+  EXPECT_EQ(iso_rows[0]["run_id"], iso_rows[1]["run_id"]);
+  EXPECT_EQ(iso_rows[1]["tags"], "k=v");
+  for (std::vector<std::string> bad : {std::vector<std::string>{"--tag", "nokey"},
+                                       {"--tag", "9a=1"},
+                                       {"--tag", "a=1", "--tag", "a=2"},
+                                       {"--run-id", "xyz"}}) {
+    std::vector<std::string> args = {"run", "occupancy", "--quick", "--out", (dir / "bad.csv").string()};
+    args.insert(args.end(), bad.begin(), bad.end());
+    auto e = run_oitbench(args);
+    EXPECT_EQ(e.exit_code, 2) << bad[1];
+    EXPECT_TRUE(contains(e.err, bad[0] + " ")) << e.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.csv"));
+}
+
 TEST(Cli, HelpExplainsAndExitsZero) {
   auto r = run_oitbench({"run", "--help"});
   EXPECT_EQ(r.exit_code, 0);
