@@ -13,6 +13,7 @@ PACKAGES=(
   libassimp-dev assimp-testmodels                     # model loading and the stand-in scenes
   libgtest-dev googletest                             # tests
   python3 python3-matplotlib python3-yaml             # figures, tables, comparisons; deploy/ recipes parsed in tests
+  postgresql python3-psycopg                          # the shared result store (scripts/store.py) and its tests
   slurm-wlm munge                                     # tests/fleet: a single-node Slurm cluster runs a sharded array
   chromium                                            # the report page is tested in headless chromium
   patchelf                                            # scripts/bundle.sh: the bundled binary's rpath
