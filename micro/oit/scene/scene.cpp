@@ -584,6 +584,177 @@ void parse_light_and_effects(const Node& root, SceneDesc& s) {
     if (std::find(declared.begin(), declared.end(), v) != declared.end()) s.effects.push_back(v);
 }
 
+// The JSON of a scene file; a syntax error or an out-of-range number names FILE:LINE:COLUMN.
+json parse_json(const std::string& path, const std::string& text) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // e.byte is the 1-based offset of the character that broke the parse.
+    std::string what = e.what();
+    if (auto at = what.find("syntax error"); at != std::string::npos) what = what.substr(at);
+    throw SceneError(path + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + what);
+  } catch (const json::exception& e) {  // a number past a double's range (1e400)
+    throw SceneError(path + ":" + line_column(text, json_error_offset(text, e.what())) + ": " + e.what());
+  }
+  return j;
+}
+
+// One parameter of an object's "params" or "small", checked by its kind (counts, sizes, lists).
+void check_object_param(Node& pn, const std::string& pk, const json& pv, const SceneObject& obj) {
+  auto v = pn.child(pk);
+  if (pk == "model_opacity" || pk == "opaque_unless_translucent") {
+    v.boolean();
+  } else if (pk == "alpha_by_material") {
+    v.expect_object({});
+    for (const auto& [mk, mv] : pv.items()) v.child(mk).number(0, 1);
+  } else if (pk == "exclude_materials") {
+    if (!pv.is_array()) v.fail("expected an array of model material names");
+    for (size_t e = 0; e < pv.size(); ++e) v.element(e).str();
+  } else if (pk == "offset") {
+    v.vec3();
+  } else if (pk == "colours" || pk == "alphas") {
+    if (!pv.is_array())
+      v.fail(pk == "colours" ? "expected an array of [r, g, b], one per plane"
+                             : "expected an array of alphas, one per plane");
+    for (size_t e = 0; e < pv.size(); ++e)
+      pk == "colours" ? (void)v.element(e).vec3(0, 1) : (void)v.element(e).number(0, 1);
+  } else if ((pk == "grid" || pk == "spacing") && pv.is_array()) {
+    v.vec3(pk == "grid" ? 1 : 0, 1e4);
+    if (pk == "grid")
+      for (size_t e = 0; e < 3; ++e) v.element(e).integer(1, 1e4);
+  } else if (pk == "lowest_root") {
+    v.number(-1, 0.9);                // roots are drawn until one lies above it: near 1 none ever does
+  } else if (kCountKeys.count(pk)) {  // counts: whole numbers, never truncated
+    double x = v.integer(pk == "grid" ? 1 : 0, 1e7);
+    if (pk == "sides" && obj.generator == "strands" && x > 0 && x < 3)
+      v.fail("expected 0 (line segments) or 3 and more (tubes), got " + std::to_string(static_cast<int>(x)));
+  } else {
+    double x = v.number(0, pk == "colour_mix" ? 1 : 1e7);
+    // A size of 0 makes primitives without area: every case would capture nothing and pass.
+    if (x == 0 && kPositiveKeys.count(pk))
+      v.fail("expected a number above 0 (0 makes primitives without area, so nothing is drawn)");
+  }
+}
+
+// "planes": colours and alphas lists hold one entry per plane (count), in params and in small.
+void check_plane_lists(Node& o, const SceneObject& obj) {
+  if (obj.generator != "planes") return;
+  for (const json* ps : {&obj.params, &obj.small}) {
+    if (!ps->is_object()) continue;
+    json merged = obj.params;
+    for (const auto& [k, v] : ps->items()) merged[k] = v;
+    size_t count = merged.contains("count") ? merged["count"].get<size_t>() : 128;
+    for (const char* list : {"colours", "alphas"})
+      if (merged.contains(list) && merged[list].size() != count)
+        o.child(ps == &obj.params || !obj.small.contains(list) ? "params" : "small")
+            .child(list)
+            .fail("expected " + std::to_string(count) + " entries (one per plane: count), got " +
+                  std::to_string(merged[list].size()));
+  }
+}
+
+// One entry of "objects": its generator, material, params and small.
+SceneObject parse_object(Node o, const SceneDesc& s) {
+  o.expect_object({"generator", "material", "params", "small", "file"});
+  SceneObject obj;
+  if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, strands, smoke, model");
+  obj.generator = o.child("generator").str();
+  if (std::find(kGenerators.begin(), kGenerators.end(), obj.generator) == kGenerators.end())
+    o.child("generator")
+        .fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, strands, smoke or model");
+  if (obj.generator == "model") {
+    if (!o.has("file")) o.fail("expected \"file\": the model file (searched in model_roots)");
+    obj.file = o.child("file").str();
+  }
+  if (!o.has("material")) o.fail("expected \"material\": the name of one of the scene's materials");
+  obj.material = o.child("material").str();
+  bool known =
+      std::any_of(s.materials.begin(), s.materials.end(), [&](const Material& m) { return m.name == obj.material; });
+  if (!known) o.child("material").fail("no material named \"" + obj.material + "\" in \"materials\"");
+  for (const char* key : {"params", "small"}) {
+    if (!o.has(key)) continue;
+    auto pn = o.child(key);
+    pn.expect_object({"count",
+                      "half_size",
+                      "depth",
+                      "strands",
+                      "segments",
+                      "sides",
+                      "segment_length",
+                      "tube_radius",
+                      "radius",
+                      "wiggle",
+                      "seed",
+                      "per_strand",
+                      "head_radius",
+                      "gravity",
+                      "curl",
+                      "lowest_root",
+                      "size",
+                      "spread",
+                      "height",
+                      "grid",
+                      "spacing",
+                      "colour_mix",
+                      "model_opacity",
+                      "opaque_unless_translucent",
+                      "alpha_by_material",
+                      "exclude_materials",
+                      "offset",
+                      "colours",
+                      "alphas"});
+    for (const auto& [pk, pv] : pn.raw().items()) check_object_param(pn, pk, pv, obj);
+    (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();
+  }
+  if (obj.params.is_null()) obj.params = json::object();
+  check_plane_lists(o, obj);
+  return obj;
+}
+
+void parse_materials(Node& root, const json& j, SceneDesc& s) {
+  if (!root.has("materials")) root.fail("expected \"materials\": {\"NAME\": {\"colour\": [r, g, b], \"alpha\": a}}");
+  auto mats = root.child("materials");
+  mats.expect_object({});
+  for (const auto& [k, v] : j["materials"].items()) {
+    (void)v;
+    auto n = mats.child(k);
+    n.expect_object({"colour", "alpha", "opaque", "soft"});
+    Material m;
+    m.name = k;
+    if (n.has("colour")) m.colour = n.child("colour").vec3(0, 1);
+    if (n.has("alpha")) m.alpha = static_cast<float>(n.child("alpha").number(0, 1));
+    if (n.has("opaque")) m.opaque = n.child("opaque").boolean();
+    if (n.has("soft")) m.soft = n.child("soft").boolean();
+    if (m.opaque) m.alpha = 1.0f;
+    s.materials.push_back(m);
+  }
+}
+
+void parse_views(Node& root, const json& j, SceneDesc& s) {
+  if (!root.has("views")) root.fail("expected \"views\": {\"NAME\": {\"eye\": [x, y, z], ...}}");
+  auto views = root.child("views");
+  views.expect_object({});
+  for (const auto& [k, v] : j["views"].items()) {
+    (void)v;
+    auto n = views.child(k);
+    n.expect_object({"eye", "target", "up", "fov", "order"});
+    View view;
+    view.name = k;
+    if (!n.has("eye")) n.fail("expected \"eye\": [x, y, z]");
+    view.eye = n.child("eye").vec3();
+    if (n.has("target")) view.target = n.child("target").vec3();
+    if (n.has("up")) view.up = n.child("up").vec3();
+    if (n.has("fov")) view.fov_deg = static_cast<float>(n.child("fov").number(1, 170));
+    if (n.has("order")) view.order = parse_order(n.child("order"));
+    if (glm::length(view.eye - view.target) < 1e-6f) n.fail("eye and target coincide");
+    if (glm::length(glm::cross(glm::normalize(view.target - view.eye), view.up)) < 1e-4f)
+      n.fail("\"up\" is parallel to the view direction (or zero); give an up vector across it");
+    s.views.push_back(view);
+  }
+  if (s.views.empty()) views.fail("expected at least one view");
+}
+
 }  // namespace
 
 const std::vector<std::string>& effect_names() {
@@ -610,17 +781,7 @@ const Material& SceneDesc::material(const std::string& n) const {
 }
 
 SceneDesc parse_scene(const std::string& path, const std::string& text) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // e.byte is the 1-based offset of the character that broke the parse.
-    std::string what = e.what();
-    if (auto at = what.find("syntax error"); at != std::string::npos) what = what.substr(at);
-    throw SceneError(path + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": malformed JSON: " + what);
-  } catch (const json::exception& e) {  // a number past a double's range (1e400)
-    throw SceneError(path + ":" + line_column(text, json_error_offset(text, e.what())) + ": " + e.what());
-  }
+  json j = parse_json(path, text);
   Node root(j, path, text, {});
   root.expect_object(
       {"name", "description", "background", "effects", "light", "materials", "objects", "views", "model_roots"});
@@ -634,151 +795,15 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     for (size_t i = 0; i < r.raw().size(); ++i) s.model_roots.push_back(r.element(i).str());
   }
   if (root.has("background")) s.background = root.child("background").vec3(0, 1);
-  if (!root.has("materials")) root.fail("expected \"materials\": {\"NAME\": {\"colour\": [r, g, b], \"alpha\": a}}");
-  auto mats = root.child("materials");
-  mats.expect_object({});
-  for (const auto& [k, v] : j["materials"].items()) {
-    (void)v;
-    auto n = mats.child(k);
-    n.expect_object({"colour", "alpha", "opaque", "soft"});
-    Material m;
-    m.name = k;
-    if (n.has("colour")) m.colour = n.child("colour").vec3(0, 1);
-    if (n.has("alpha")) m.alpha = static_cast<float>(n.child("alpha").number(0, 1));
-    if (n.has("opaque")) m.opaque = n.child("opaque").boolean();
-    if (n.has("soft")) m.soft = n.child("soft").boolean();
-    if (m.opaque) m.alpha = 1.0f;
-    s.materials.push_back(m);
-  }
+  parse_materials(root, j, s);
   if (!root.has("objects")) root.fail("expected \"objects\": [{\"generator\": ..., \"material\": ...}]");
   auto objs = root.child("objects");
   if (!objs.raw().is_array() || objs.raw().empty()) objs.fail("expected a non-empty array of objects");
   for (size_t i = 0; i < objs.raw().size(); ++i) {
-    auto o = objs.element(i);
-    o.expect_object({"generator", "material", "params", "small", "file"});
-    SceneObject obj;
-    if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, strands, smoke, model");
-    obj.generator = o.child("generator").str();
-    if (std::find(kGenerators.begin(), kGenerators.end(), obj.generator) == kGenerators.end())
-      o.child("generator")
-          .fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, strands, smoke or model");
-    if (obj.generator == "model") {
-      if (!o.has("file")) o.fail("expected \"file\": the model file (searched in model_roots)");
-      obj.file = o.child("file").str();
-    }
-    if (!o.has("material")) o.fail("expected \"material\": the name of one of the scene's materials");
-    obj.material = o.child("material").str();
-    bool known =
-        std::any_of(s.materials.begin(), s.materials.end(), [&](const Material& m) { return m.name == obj.material; });
-    if (!known) o.child("material").fail("no material named \"" + obj.material + "\" in \"materials\"");
-    for (const char* key : {"params", "small"}) {
-      if (!o.has(key)) continue;
-      auto pn = o.child(key);
-      pn.expect_object({"count",
-                        "half_size",
-                        "depth",
-                        "strands",
-                        "segments",
-                        "sides",
-                        "segment_length",
-                        "tube_radius",
-                        "radius",
-                        "wiggle",
-                        "seed",
-                        "per_strand",
-                        "head_radius",
-                        "gravity",
-                        "curl",
-                        "lowest_root",
-                        "size",
-                        "spread",
-                        "height",
-                        "grid",
-                        "spacing",
-                        "colour_mix",
-                        "model_opacity",
-                        "opaque_unless_translucent",
-                        "alpha_by_material",
-                        "exclude_materials",
-                        "offset",
-                        "colours",
-                        "alphas"});
-      for (const auto& [pk, pv] : pn.raw().items()) {
-        auto v = pn.child(pk);
-        if (pk == "model_opacity" || pk == "opaque_unless_translucent") {
-          v.boolean();
-        } else if (pk == "alpha_by_material") {
-          v.expect_object({});
-          for (const auto& [mk, mv] : pv.items()) v.child(mk).number(0, 1);
-        } else if (pk == "exclude_materials") {
-          if (!pv.is_array()) v.fail("expected an array of model material names");
-          for (size_t e = 0; e < pv.size(); ++e) v.element(e).str();
-        } else if (pk == "offset") {
-          v.vec3();
-        } else if (pk == "colours" || pk == "alphas") {
-          if (!pv.is_array())
-            v.fail(pk == "colours" ? "expected an array of [r, g, b], one per plane"
-                                   : "expected an array of alphas, one per plane");
-          for (size_t e = 0; e < pv.size(); ++e)
-            pk == "colours" ? (void)v.element(e).vec3(0, 1) : (void)v.element(e).number(0, 1);
-        } else if ((pk == "grid" || pk == "spacing") && pv.is_array()) {
-          v.vec3(pk == "grid" ? 1 : 0, 1e4);
-          if (pk == "grid")
-            for (size_t e = 0; e < 3; ++e) v.element(e).integer(1, 1e4);
-        } else if (pk == "lowest_root") {
-          v.number(-1, 0.9);                // roots are drawn until one lies above it: near 1 none ever does
-        } else if (kCountKeys.count(pk)) {  // counts: whole numbers, never truncated
-          double x = v.integer(pk == "grid" ? 1 : 0, 1e7);
-          if (pk == "sides" && obj.generator == "strands" && x > 0 && x < 3)
-            v.fail("expected 0 (line segments) or 3 and more (tubes), got " + std::to_string(static_cast<int>(x)));
-        } else {
-          double x = v.number(0, pk == "colour_mix" ? 1 : 1e7);
-          // A size of 0 makes primitives without area: every case would capture nothing and pass.
-          if (x == 0 && kPositiveKeys.count(pk))
-            v.fail("expected a number above 0 (0 makes primitives without area, so nothing is drawn)");
-        }
-      }
-      (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();
-    }
-    if (obj.params.is_null()) obj.params = json::object();
-    if (obj.generator == "planes") {
-      for (const json* ps : {&obj.params, &obj.small}) {
-        if (!ps->is_object()) continue;
-        json merged = obj.params;
-        for (const auto& [k, v] : ps->items()) merged[k] = v;
-        size_t count = merged.contains("count") ? merged["count"].get<size_t>() : 128;
-        for (const char* list : {"colours", "alphas"})
-          if (merged.contains(list) && merged[list].size() != count)
-            o.child(ps == &obj.params || !obj.small.contains(list) ? "params" : "small")
-                .child(list)
-                .fail("expected " + std::to_string(count) + " entries (one per plane: count), got " +
-                      std::to_string(merged[list].size()));
-      }
-    }
-    s.objects.push_back(std::move(obj));
+    s.objects.push_back(parse_object(objs.element(i), s));
   }
   parse_light_and_effects(root, s);
-  if (!root.has("views")) root.fail("expected \"views\": {\"NAME\": {\"eye\": [x, y, z], ...}}");
-  auto views = root.child("views");
-  views.expect_object({});
-  for (const auto& [k, v] : j["views"].items()) {
-    (void)v;
-    auto n = views.child(k);
-    n.expect_object({"eye", "target", "up", "fov", "order"});
-    View view;
-    view.name = k;
-    if (!n.has("eye")) n.fail("expected \"eye\": [x, y, z]");
-    view.eye = n.child("eye").vec3();
-    if (n.has("target")) view.target = n.child("target").vec3();
-    if (n.has("up")) view.up = n.child("up").vec3();
-    if (n.has("fov")) view.fov_deg = static_cast<float>(n.child("fov").number(1, 170));
-    if (n.has("order")) view.order = parse_order(n.child("order"));
-    if (glm::length(view.eye - view.target) < 1e-6f) n.fail("eye and target coincide");
-    if (glm::length(glm::cross(glm::normalize(view.target - view.eye), view.up)) < 1e-4f)
-      n.fail("\"up\" is parallel to the view direction (or zero); give an up vector across it");
-    s.views.push_back(view);
-  }
-  if (s.views.empty()) views.fail("expected at least one view");
+  parse_views(root, j, s);
   return s;
 }
 
