@@ -72,7 +72,7 @@ void apply_context(CliState& s) {
   try {
     apply_driver(find_driver(s.driver), s.context);
   } catch (const BackendError& e) {
-    throw UsageError(e.what());
+    throw UsageError(std::string("--driver: ") + e.what());
   }
   if (s.context.device != 0 && s.context.backend != "egl-device")
     throw UsageError("--device " + std::to_string(s.context.device) +

@@ -9,7 +9,11 @@ namespace oitbench::app {
 
 int run_command(Registry& registry, RunCommand& c) {
   RunOptions& ropt = c.options;
-  if (!c.resolution.empty()) ropt.resolution = parse_resolution(c.resolution);
+  if (!c.resolution.empty()) try {
+      ropt.resolution = parse_resolution(c.resolution);
+    } catch (const UsageError& e) {
+      throw UsageError(std::string("--resolution: ") + e.what());
+    }
   ropt.tags = parse_tags(c.tags);
   if (!ropt.run_id.empty() && !is_run_id(ropt.run_id))
     throw UsageError("--run-id " + ropt.run_id + ": give a UUID like 0f8fad5b-d9cb-469f-a165-70867728950e");
@@ -17,7 +21,12 @@ int run_command(Registry& registry, RunCommand& c) {
   std::vector<RunRequest> requests;
   if (!c.preset.empty()) {
     if (!c.experiments.empty()) throw UsageError("give either --preset or experiment names, not both");
-    auto p = load_preset(c.preset_dir, c.preset);
+    Preset p;
+    try {
+      p = load_preset(c.preset_dir, c.preset);
+    } catch (const UsageError& e) {
+      throw UsageError("--preset " + c.preset + ": " + e.what());
+    }
     if (ropt.preset_name.empty()) ropt.preset_name = p.name;
     requests = p.runs;
     for (auto& r : requests)
@@ -57,8 +66,17 @@ int run_command(Registry& registry, RunCommand& c) {
   if (!c.baseline.empty()) {
     std::map<std::string, std::string> baseline;
     for (const auto& b : c.baseline) {
-      auto [k, v] = parse_set_option(b);
+      std::pair<std::string, std::vector<std::string>> kv;
+      try {
+        kv = parse_set_option(b);
+      } catch (const UsageError&) {
+        throw UsageError("--baseline " + b + ": expected NAME=VALUE, e.g. technique=BASE-IS");
+      }
+      const auto& [k, v] = kv;
       if (v.size() != 1) throw UsageError("--baseline " + b + ": give one value, NAME=VALUE");
+      if (baseline.count(k))
+        throw UsageError("--baseline " + k + " is given twice (" + k + "=" + baseline[k] + " and " + b +
+                         "); a baseline is one case: give each parameter once");
       baseline[k] = v[0];
     }
     bool taken = false;
@@ -75,6 +93,12 @@ int run_command(Registry& registry, RunCommand& c) {
       }
     }
     if (!taken) throw UsageError("no selected experiment has the parameters of --baseline (see: oitbench list)");
+    try {
+      check_requests(registry, requests, ropt.quick, ropt.max_cases);
+    } catch (const UsageError& e) {  // the baseline's value or a baseline outside the grid
+      if (std::string(e.what()).find("the baseline ") == std::string::npos) throw;
+      throw UsageError(std::string("--baseline: ") + e.what());
+    }
   }
   return run_experiments(registry, requests, ropt);
 }

@@ -10,14 +10,10 @@ std::string baseline_text(const std::map<std::string, std::string>& baseline) {
   return s;
 }
 
-namespace {
-
 bool has_baseline_values(const ParamSet& p, const std::map<std::string, std::string>& baseline) {
   return std::all_of(baseline.begin(), baseline.end(),
                      [&](const auto& kv) { return p.has(kv.first) && p.get(kv.first) == kv.second; });
 }
-
-}  // namespace
 
 bool is_baseline_of(const ParamSet& base, const ParamSet& c, const std::map<std::string, std::string>& baseline) {
   if (baseline.empty() || !has_baseline_values(base, baseline) || has_baseline_values(c, baseline)) return false;

@@ -19,6 +19,9 @@ struct GroupPlan {
 // The case's baseline values: NAME=VALUE;... in the parameters' order of `baseline`.
 std::string baseline_text(const std::map<std::string, std::string>& baseline);
 
+// Whether the case has every value of the baseline (is a baseline case).
+bool has_baseline_values(const ParamSet& p, const std::map<std::string, std::string>& baseline);
+
 // Whether `base` is the baseline of `c`: it has the baseline's values, and every other parameter both use
 // has the same value in both.
 bool is_baseline_of(const ParamSet& base, const ParamSet& c, const std::map<std::string, std::string>& baseline);

@@ -681,6 +681,16 @@ RunSize resolve_run_size(const RunRequest& r, const Experiment& e, const RunOpti
 }
 
 namespace {
+// A baseline no case of the grid has would name a case that never runs: refused.
+void check_baseline_in_grid(const std::map<std::string, std::string>& baseline, const std::vector<ParamSet>& cases) {
+  if (baseline.empty()) return;
+  for (const auto& c : cases)
+    if (has_baseline_values(c, baseline)) return;
+  throw UsageError("the baseline " + baseline_text(baseline) +
+                   " is not a case of the grid, so it would never run: add its values to the grid (e.g. --set " +
+                   baseline.begin()->first + "=...," + baseline.begin()->second + ") or choose another baseline");
+}
+
 // One request against the registry; returns its number of cases.
 size_t check_request(const Registry& registry, const RunRequest& r, bool quick, size_t max_cases) {
   const Experiment* e = registry.find(r.experiment);
@@ -691,7 +701,11 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
     auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == name; });
     if (it == specs.end())
       throw UsageError("experiment '" + e->name() + "': the baseline names no parameter '" + name + "'");
-    it->check(value, e->name());
+    try {
+      it->check(value, e->name());
+    } catch (const UsageError& err) {
+      throw UsageError("the baseline " + name + "=" + value + ": " + err.what());
+    }
   }
   // The grid on a software renderer and, where the entry has a hardware "set", the one on hardware: both
   // must be valid wherever the check runs.
@@ -708,12 +722,18 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
                          (hardware && r.hardware->set.count(name) ? " (in its hardware set)" : "") +
                          "; valid parameters: " + valid);
       }
-      for (const auto& v : values) it->check(v, e->name());
+      try {
+        for (const auto& v : values) it->check(v, e->name());
+      } catch (const UsageError& err) {
+        if (!hardware || !r.hardware->set.count(name)) throw;
+        throw UsageError(std::string("hardware.set: ") + err.what());
+      }
     }
     try {
       // a scoped --set that no case uses, a grid too large, a case the experiment's data rules out
       auto cases = expand_grid(specs, overrides, quick || r.quick, max_cases);
       e->check_cases(cases);
+      check_baseline_in_grid(r.baseline, cases);
       most = std::max(most, cases.size());
     } catch (const UsageError& err) {
       throw UsageError("experiment '" + e->name() + "'" + (hardware ? " on a hardware driver" : "") + ": " +

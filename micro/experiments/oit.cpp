@@ -260,19 +260,40 @@ class OitExperiment final : public Experiment {
   // a scene that does not load is left to the case (its FILE:LINE:COLUMN error).
   void check_cases(const std::vector<ParamSet>& cases) const override {
     std::set<std::tuple<std::string, std::string, std::string>> seen;
+    bool shadowing = false;
     for (const auto& c : cases) {
       if (!seen.insert({c.get("scene"), c.get("view"), c.get("effects")}).second) continue;
       SceneDesc s;
       try {  // a scene or view that is not there is bad input (exit 2), as in render and view
         s = load_scene(c.get("scene"));
         s.view(c.get("view"));
+        check_model_files(s);
       } catch (const SceneError& e) {
         throw UsageError(e.what());
       }
       try {
-        select_effects(s, c.get("effects"));
+        auto effects = select_effects(s, c.get("effects"));
+        shadowing = shadowing || std::find(effects.begin(), effects.end(), "self-shadowing") != effects.end();
       } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
+      }
+    }
+    if (!shadowing) check_shadow_params_unused(cases);
+  }
+  // Without self-shadowing in any case, a shadow parameter other than its defaults was set for nothing:
+  // its cases would run the same image (docs/usage.md: a parameter no selected case uses is a usage error).
+  void check_shadow_params_unused(const std::vector<ParamSet>& cases) const {
+    for (const auto& spec : params()) {
+      if (spec.name.rfind("shadow_", 0) != 0) continue;
+      for (const auto& c : cases) {
+        if (!c.has(spec.name)) continue;
+        const auto& v = c.get(spec.name);
+        bool is_default = std::find(spec.defaults.begin(), spec.defaults.end(), v) != spec.defaults.end() ||
+                          std::find(spec.quick.begin(), spec.quick.end(), v) != spec.quick.end();
+        if (!is_default)
+          throw UsageError(spec.name + "=" + v + ": only cases whose effects hold self-shadowing read " + spec.name +
+                           ", and no selected case does (scene " + c.get("scene") +
+                           "); choose a scene that declares it (e.g. scene=hairball-lit) or drop the --set");
       }
     }
   }

@@ -525,6 +525,19 @@ std::string resolve_model(const SceneDesc& s, const std::string& file) {
                    " (set OITBENCH_MODELS, or install Debian's assimp-testmodels)");
 }
 
+// Every model file of the scene found and a regular file of bounded size: a folder or /dev/null is bad
+// input (exit 2) before any case runs, not an error row.
+void check_model_files_of(const SceneDesc& scene) {
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    if (scene.objects[i].generator != "model") continue;
+    try {
+      check_input_file(resolve_model(scene, scene.objects[i].file), "model file", kMaxModelFileBytes);
+    } catch (const FileError& e) {
+      throw SceneError(scene.path + ": /objects/" + std::to_string(i) + "/file: " + e.what());
+    }
+  }
+}
+
 // "light" and "effects", checked against what the scene holds: each effect needs something to act on.
 void parse_light_and_effects(const Node& root, SceneDesc& s) {
   if (root.has("light")) {
@@ -828,6 +841,8 @@ SceneDesc load_scene(const std::string& name_or_path) {
     throw SceneError(e.what());
   }
 }
+
+void check_model_files(const SceneDesc& scene) { check_model_files_of(scene); }
 
 Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque,
                 unsigned long long max_bytes) {

@@ -110,6 +110,10 @@ struct Mesh {
 // otherwise they stay in `indices` with alpha 1, captured like any other fragment.
 // Throws SceneError naming the file, the object and its parameters when the mesh would take more than
 // `max_bytes` (estimated from the parameters, and for a model from its file, before anything is made).
+// Throws SceneError naming the scene file and the object when a model file is missing or is not a regular
+// file of bounded size (a folder, /dev/null): checked before any case runs.
+void check_model_files(const SceneDesc& scene);
+
 inline constexpr unsigned long long kMaxMeshBytes = 4ull << 30;
 Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque = false,
                 unsigned long long max_bytes = kMaxMeshBytes);
