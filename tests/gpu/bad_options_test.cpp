@@ -114,7 +114,7 @@ std::map<int, std::string> exit_table(const std::string& usage) {
 
 TEST(BadOptions, TheExitTableOfUsageMdIsWhatTheBinaryDoes) {
   auto codes = exit_table(slurp(kSourceDir / "docs" / "usage.md"));
-  ASSERT_EQ(codes.size(), 5u) << "docs/usage.md's exit table not found or changed: extend this test";
+  ASSERT_EQ(codes.size(), 6u) << "docs/usage.md's exit table not found or changed: extend this test";
   auto dir = temp_dir("exit-table");
   auto out = [&](const std::string& name) { return (dir / (name + ".csv")).string(); };
   const std::vector<std::string> quick = {"run", "occupancy", "--quick", "--set", "size=4", "--no-progress"};
@@ -127,6 +127,10 @@ TEST(BadOptions, TheExitTableOfUsageMdIsWhatTheBinaryDoes) {
   ran[0] = run_oitbench(with({"--reps", "1", "--out", out("ok")}));
   ran[1] = run_oitbench(with({"--reps", "1", "--set", "fault=compile-error", "--out", out("error")}));
   ran[2] = run_oitbench(with({"--set", "sise=1", "--out", out("usage")}));
+  const auto expect = dir / "none.expect";  // every case expected ok: an error row is unexpected
+  std::ofstream(expect) << "# no known failures\n";
+  ran[4] = run_oitbench(
+      with({"--reps", "1", "--set", "fault=compile-error", "--expect", expect.string(), "--out", out("unexpected")}));
   ran[3] = run_oitbench({"run", "spinlock", "--quick", "--driver", "softpipe", "--out", out("unsupported")});
   ran[130] = run_oitbench_interrupted(
       {"run", "occupancy", "--set", "variant=unrolled", "--set", "size=33..232", "--resolution", "200x150", "--set",
