@@ -14,9 +14,9 @@
 #define CAPTURE_COUNTER_BINDING 0  // atomic counter, PPLL: nodes allocated
 #define CAPTURE_OFFSETS_BINDING 2  // SSBO, PPPA: each pixel's first node (the prefix sum's output)
 
-#define SCAN_IN_BINDING 0          // SSBO: the prefix sum's input level
-#define SCAN_OUT_BINDING 1         // SSBO: its output level
-#define SCAN_BLOCK_SUMS_BINDING 2  // SSBO: the block sums carried to the next level
+#define SCAN_IN_BINDING 0                     // SSBO: the prefix sum's input level
+#define SCAN_OUT_BINDING 1                    // SSBO: its output level
+#define SCAN_BLOCK_SUMS_BINDING 2             // SSBO: the block sums carried to the next level
 #define SCAN_COUNTS_UNIT CAPTURE_COUNTS_UNIT  // image: the counts the first level reads
 
 #endif

@@ -405,6 +405,24 @@ glm::vec3 per_axis(const json& p, const char* key, float fallback) {
 // `exclude_materials` are left out (before the bounding box is taken). With
 // `opaque_unless_translucent`, every model material is opaque except those the file makes
 // translucent (model_opacity) or alpha_by_material names: the house's walls and its glass.
+// One model mesh's triangles appended to the builder, each vertex placed by `place` and coloured `c`.
+template <class Place>
+void append_model_mesh(Builder& b, const aiMesh& mesh, Place place, glm::vec4 c) {
+  unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
+  for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+    const aiVector3D& q = mesh.mVertices[v];
+    b.vertex(place(glm::vec3(q.x, q.y, q.z)), c);
+  }
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices != 3) continue;
+    b.begin();
+    unsigned a = first + face.mIndices[0], bb = first + face.mIndices[1], cc = first + face.mIndices[2];
+    b.mesh.indices.insert(b.mesh.indices.end(), {a, bb, cc});
+    b.end((b.mesh.vertices[a].position + b.mesh.vertices[bb].position + b.mesh.vertices[cc].position) / 3.0f);
+  }
+}
+
 void gen_model(Builder& b, const json& p, const Material& m, const std::string& file, const SceneDesc& scene,
                size_t object, MeshEstimate& total, unsigned long long max_bytes) {
   try {
@@ -491,19 +509,8 @@ void gen_model(Builder& b, const json& p, const Material& m, const std::string& 
           }
           b.opaque = opaque;
           glm::vec4 c(glm::mix(m.colour, diffuse, mix), opaque ? 1.0f : alpha);
-          unsigned first = static_cast<unsigned>(b.mesh.vertices.size());
-          for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-            const aiVector3D& q = mesh->mVertices[v];
-            b.vertex((glm::vec3(q.x, q.y, q.z) - centre) * scale + offset, c);
-          }
-          for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-            const aiFace& face = mesh->mFaces[f];
-            if (face.mNumIndices != 3) continue;
-            b.begin();
-            unsigned a = first + face.mIndices[0], bb = first + face.mIndices[1], cc = first + face.mIndices[2];
-            b.mesh.indices.insert(b.mesh.indices.end(), {a, bb, cc});
-            b.end((b.mesh.vertices[a].position + b.mesh.vertices[bb].position + b.mesh.vertices[cc].position) / 3.0f);
-          }
+          append_model_mesh(
+              b, *mesh, [&](glm::vec3 q) { return (q - centre) * scale + offset; }, c);
         }
       }
 }
