@@ -11,6 +11,7 @@
 #
 # The steps (GPU sizes; --smoke in brackets):
 #   info           oitbench info and info --drivers (info.txt)
+#   device         oitbench info --backend egl-device --device auto: the device it picks (device.txt)
 #   occupancy      dynamic and unrolled, 800x600, 64 draws, sizes 1-256        [64x48, 4 draws, 1 33]
 #   sort           800x800, n 8-32, both memories, every sort (fragment pass)  [32x32, n 8, 3 sorts]
 #   knowles2014    1920x1080, planes and hairball fwd/rev, the engine grid V1-V3: BASE-IS, BASE-RBS-L,
@@ -82,6 +83,14 @@ run_step() {  # NAME PRESET_NAME oitbench-run-arguments...
   printf '%s\n\n' "$info"
   "$exe" info --drivers 2>&1
 } >"$out/info.txt"
+
+# Which EGL device --device auto picks under this scheduler binding (docs/ci.md "Device selection"):
+# untestable without a GPU, so every GPU run records it (device.txt; a failure here fails nothing else).
+{
+  env | grep -E '^(CUDA_VISIBLE_DEVICES|SLURM_STEP_GPUS|SLURM_JOB_GPUS|GPU_DEVICE_ORDINAL)=' || echo "(no scheduler GPU variables)"
+  "$exe" info --backend egl-device --device auto 2>&1 || echo "exit $?"
+} >"$out/device.txt"
+echo "gpu-run.sh: --device auto: $(grep -m1 -- '--device auto ->' "$out/device.txt" || grep -m1 -- '--device' "$out/device.txt")"
 
 techniques=BASE-IS,BASE-RBS-L,BMA-IS,BMA-RBS-L,BMA-AUTO,CS-RBS-L
 if [ $smoke -eq 1 ]; then

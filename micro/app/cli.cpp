@@ -28,6 +28,7 @@ struct CliState {
   Registry registry;
   ContextOptions context;
   std::string driver = "default";
+  std::string device;  // --device as given; resolved into context.device by apply_context
   ListOptions list;
   bool info_drivers = false;
   RunCommand run;
@@ -67,6 +68,21 @@ constexpr const char* kExitCodes =
     "2 usage error, 3 nothing could run on this driver (all unsupported), 4 an outcome --expect did not\n"
     "expect (with --expect: 0 when every outcome was expected), 130 interrupted.";
 
+// --device N|cuda:N|drm:PATH|auto into the EGL device index (backends/device_select.hpp); exit 2 listing
+// the devices when it names none. Anything but a plain index says on stderr how it chose.
+void resolve_device(CliState& s) {
+  std::vector<DeviceDescription> devices;
+  for (const auto& d : list_egl_devices()) devices.push_back(d);
+  DeviceChoice c = choose_device(s.device, devices, device_environment());
+  if (!c.error.empty())
+    throw UsageError("--device " + s.device + ": " + c.error +
+                     (c.rule.rfind("auto", 0) == 0 ? " [" + c.rule + "]" : "") +
+                     "; devices found: " + describe_devices(devices));
+  s.context.device = c.index;
+  if (c.rule != "index " + s.device)
+    std::fprintf(stderr, "oitbench: --device %s -> EGL device %d (%s)\n", s.device.c_str(), c.index, c.rule.c_str());
+}
+
 // --driver and --device into the context options (a usage error when they do not fit together).
 void apply_context(CliState& s) {
   try {
@@ -74,18 +90,29 @@ void apply_context(CliState& s) {
   } catch (const BackendError& e) {
     throw UsageError(std::string("--driver: ") + e.what());
   }
-  if (s.context.device != 0 && s.context.backend != "egl-device")
-    throw UsageError("--device " + std::to_string(s.context.device) +
-                     " applies to --backend egl-device only (this is --backend " + s.context.backend +
-                     "); see: oitbench info --drivers");
+  if (s.device.empty()) return;
+  if (s.context.backend != "egl-device") {
+    if (s.device == "0") return;
+    throw UsageError("--device " + s.device + " applies to --backend egl-device only (this is --backend " +
+                     s.context.backend + "); see: oitbench info --drivers");
+  }
+  resolve_device(s);
 }
 
 void add_backend(CLI::App& cmd, CliState& s) {
   cmd.add_option("--backend", s.context.backend,
                  "Context backend: egl (surfaceless, default), egl-device, osmesa, glfw")
       ->check(CLI::IsMember(compiled_backends()));
-  cmd.add_option("--device", s.context.device, "EGL device index for --backend egl-device (see info)")
-      ->transform(number(whole(0, 1023)));
+  cmd.add_option("--device", s.device,
+                 "EGL device for --backend egl-device: N (index), cuda:N, drm:/dev/dri/renderD128, auto "
+                 "(CUDA_VISIBLE_DEVICES / Slurm's GPUs; see docs/ci.md); list: oitbench info --backend egl-device")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            std::string e = choose_device(v, {}, {}).error;
+            bool syntax = e.rfind("unknown device", 0) == 0 || e.rfind("cuda:", 0) == 0 || e.rfind("drm:", 0) == 0;
+            return syntax ? e : std::string();
+          },
+          "N|cuda:N|drm:PATH|auto", "device"));
   cmd.add_flag("--gl-debug", s.context.debug, "Print KHR_debug messages to stderr");
   cmd.add_option("--driver", s.driver,
                  "GL driver: default (what the loader gives), llvmpipe, zink (GL on Vulkan on lavapipe), softpipe, "

@@ -30,8 +30,11 @@ int info_command(const ContextOptions& copt) {
     auto devices = list_egl_devices();
     std::printf("EGL devices: %zu\n", devices.size());
     for (const auto& d : devices)
-      std::printf("  --device %d: %s%s%s\n", d.index, d.extensions.c_str(),
+      std::printf("  --device %d: %s%s%s%s%s%s\n", d.index, d.extensions.c_str(),
+                  d.cuda < 0 ? "" : (" cuda:" + std::to_string(d.cuda)).c_str(),
                   d.drm_file.empty() ? "" : (" " + d.drm_file).c_str(),
+                  d.render_node.empty() ? "" : (" " + d.render_node).c_str(),
+                  d.pci_bus.empty() ? "" : (" PCI " + d.pci_bus).c_str(),
                   d.renderer.empty() ? "" : (" " + d.renderer).c_str());
   }
   auto ctx = create_context(copt);

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "backends/device_select.hpp"
+
 namespace oitbench {
 
 class BackendError : public std::runtime_error {
@@ -61,11 +63,9 @@ class Context {
   virtual void* native_window() { return nullptr; }
 };
 
-struct DeviceInfo {
-  int index;
-  std::string extensions;  // EGL device extensions, e.g. EGL_MESA_device_software
-  std::string drm_file;    // EGL_DRM_DEVICE_FILE_EXT where known
-  std::string renderer;    // EGL_RENDERER_EXT where known
+struct DeviceInfo : DeviceDescription {  // index, CUDA ordinal, DRM nodes, PCI bus (device_select.hpp)
+  std::string extensions;                // EGL device extensions, e.g. EGL_MESA_device_software
+  std::string renderer;                  // EGL_RENDERER_EXT where known
 };
 
 std::vector<std::string> compiled_backends();

@@ -4,6 +4,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <filesystem>
 #include <string>
 
 #include "backends/backend.hpp"
@@ -46,6 +47,8 @@ struct EglEntryPoints {
       reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
   PFNEGLQUERYDEVICESTRINGEXTPROC query_device_string =
       reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  PFNEGLQUERYDEVICEATTRIBEXTPROC query_device_attrib =
+      reinterpret_cast<PFNEGLQUERYDEVICEATTRIBEXTPROC>(eglGetProcAddress("eglQueryDeviceAttribEXT"));
   PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display =
       reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
 };
@@ -65,6 +68,41 @@ std::string device_string(const EglEntryPoints& ep, EGLDeviceEXT dev, EGLint nam
   const char* s = ep.query_device_string(dev, name);
   eglGetError();  // a device without the string is not an error worth keeping
   return s ? s : "";
+}
+
+// The CUDA ordinal of an NVIDIA EGL device (EGL_NV_device_cuda), else -1.
+int cuda_ordinal(const EglEntryPoints& ep, EGLDeviceEXT dev) {
+  if (!ep.query_device_attrib || device_string(ep, dev, EGL_EXTENSIONS).find("EGL_NV_device_cuda") == std::string::npos)
+    return -1;
+  EGLAttrib v = -1;
+  if (!ep.query_device_attrib(dev, EGL_CUDA_DEVICE_NV, &v)) {
+    eglGetError();
+    return -1;
+  }
+  return static_cast<int>(v);
+}
+
+// The PCI bus of a DRM node: /sys/class/drm/<node>/device links to .../0000:01:00.0; empty when unknown.
+std::string pci_bus(const std::string& node) {
+  if (node.empty()) return "";
+  std::error_code ec;
+  auto target = std::filesystem::read_symlink(
+      std::filesystem::path("/sys/class/drm") / std::filesystem::path(node).filename() / "device", ec);
+  return ec ? "" : target.filename().string();
+}
+
+DeviceInfo describe_device(const EglEntryPoints& ep, EGLDeviceEXT dev, int index) {
+  DeviceInfo d;
+  d.index = index;
+  d.cuda = cuda_ordinal(ep, dev);
+  d.drm_file = device_string(ep, dev, EGL_DRM_DEVICE_FILE_EXT);
+  d.render_node = device_string(ep, dev, EGL_DRM_RENDER_NODE_FILE_EXT);
+  d.pci_bus = pci_bus(d.drm_file.empty() ? d.render_node : d.drm_file);
+  d.extensions = device_string(ep, dev, EGL_EXTENSIONS);
+#ifdef EGL_RENDERER_EXT
+  d.renderer = device_string(ep, dev, EGL_RENDERER_EXT);
+#endif
+  return d;
 }
 
 class EglContext final : public Context {
@@ -180,9 +218,9 @@ class EglContext final : public Context {
     if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr))
       throw BackendError("EGL: cannot initialize EGL device " + std::to_string(index) + ": " +
                          egl_error_name(eglGetError()));
-    std::string drm = device_string(ep, dev, EGL_DRM_DEVICE_FILE_EXT);
-    device_ = "EGL device " + std::to_string(index) + " (" + device_string(ep, dev, EGL_EXTENSIONS) +
-              (drm.empty() ? "" : ", " + drm) + ")";
+    DeviceInfo d = describe_device(ep, dev, index);
+    device_ = "EGL device " + std::to_string(index) + " (" + d.extensions +
+              (d.drm_file.empty() ? "" : ", " + d.drm_file) + (d.pci_bus.empty() ? "" : ", PCI " + d.pci_bus) + ")";
   }
 
   std::string backend_, device_;
@@ -199,14 +237,7 @@ std::vector<DeviceInfo> list_egl_devices() {
   EglEntryPoints ep;
   std::vector<DeviceInfo> out;
   auto devices = query_devices(ep);
-  for (size_t i = 0; i < devices.size(); ++i) {
-    DeviceInfo d{static_cast<int>(i), device_string(ep, devices[i], EGL_EXTENSIONS),
-                 device_string(ep, devices[i], EGL_DRM_DEVICE_FILE_EXT), ""};
-#ifdef EGL_RENDERER_EXT
-    d.renderer = device_string(ep, devices[i], EGL_RENDERER_EXT);
-#endif
-    out.push_back(d);
-  }
+  for (size_t i = 0; i < devices.size(); ++i) out.push_back(describe_device(ep, devices[i], static_cast<int>(i)));
   return out;
 }
 

@@ -26,6 +26,20 @@ namespace oitbench {
 
 namespace {
 
+// The DRM node and PCI bus of the EGL device a context runs on ({"", ""} where unknown): --backend
+// egl-device's --device, or device 0 where the egl backend fell back to the device platform.
+std::pair<std::string, std::string> device_node(const ContextOptions& o, const std::string& device_words) {
+  int index = -1;
+  if (o.backend == "egl-device")
+    index = o.device;
+  else if (device_words.rfind("EGL device 0 ", 0) == 0)
+    index = 0;
+  if (index < 0) return {"", ""};
+  for (const auto& d : list_egl_devices())
+    if (d.index == index) return {d.drm_file.empty() ? d.render_node : d.drm_file, d.pci_bus};
+  return {"", ""};
+}
+
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
@@ -90,7 +104,10 @@ class Runner {
     if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_), "--raw");
     run_columns_ = machine_columns();
     const LlvmTarget llvm = llvm_target(gl_.renderer);
+    const auto [drm_node, pci_bus] = device_node(opt_.context, ctx_->device());
     run_columns_.insert({{"backend", ctx_->backend()},
+                         {"device_drm_node", drm_node},
+                         {"device_pci_bus", pci_bus},
                          {"mesa_version", mesa_version(gl_.version)},
                          {"llvm_version", llvm.llvm_version},
                          {"llvm_vector_bits", llvm.vector_bits},

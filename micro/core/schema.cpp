@@ -69,6 +69,12 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"reason", T::Text, "", "why the case is not ok, or a note on an ok one", "result"},
       {"backend", T::Text, "", "context backend: egl, egl-device, osmesa, glfw", "run"},
       {"device", T::Text, "", "the display or EGL device the context ran on", "run"},
+      {"device_drm_node", T::Text, "",
+       "the DRM node of the EGL device the context ran on (EGL_DRM_DEVICE_FILE_EXT, else the render node); empty "
+       "where unknown (the surfaceless platform, OSMesa, GLFW)",
+       "run"},
+      {"device_pci_bus", T::Text, "",
+       "the PCI bus of that device (/sys/class/drm/NODE/device, e.g. 0000:01:00.0); empty where unknown", "run"},
       {"driver", T::Text, "",
        "the GL driver, named from its GL strings: llvmpipe, zink-lavapipe, nvidia-h200, ... "
        "(--driver selects one; see oitbench info --drivers)",

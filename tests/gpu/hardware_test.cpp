@@ -83,8 +83,7 @@ TEST(HardwarePresets, ListSaysWhichSizeAppliesHere) {
 
 TEST(HardwarePresets, ListWithoutAContextSaysItCannotTell) {
   auto dir = sized_preset_dir("sized-nocontext");
-  auto r =
-      run_oitbench({"list", "--presets", "--presets-dir", dir.string(), "--backend", "egl-device", "--device", "999"});
+  auto r = run_oitbench({"list", "--presets", "--presets-dir", dir.string(), "--driver", "egl-device-999"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "Sizes here: unknown: no GL context could be created (EGL: --device 999 out of range"))
       << r.out;
