@@ -41,6 +41,8 @@ class GpuRunSmoke(unittest.TestCase):
         self.assertTrue(os.path.exists(os.path.join(out, "report", "index.html")))
         with open(os.path.join(out, "info.txt")) as f:
             self.assertIn("GL_RENDERER:", f.read())
+        with open(os.path.join(out, "device.txt")) as f:  # the --device auto step (docs/ci.md)
+            self.assertIn("--device auto -> EGL device", f.read())
 
     def test_smoke_on_llvmpipe(self):
         self.smoke("llvmpipe", "llvmpipe")
