@@ -17,6 +17,7 @@ import json
 import os
 import sys
 
+from oitbench import cli
 from oitbench.store import StoreError, bencher, fleet, open_store, queries
 from oitbench.store import compare as store_compare
 from oitbench.store import history as store_history
@@ -185,7 +186,7 @@ def main(argv=None):
     p.add_argument("--experiment")
     p.add_argument("--case", help="case key pattern, SQL LIKE (%% any text): occupancy/unrolled/total/%%size=32")
     p.add_argument("--order", choices=store_history.ORDERS, default="date")
-    p.add_argument("--alpha", type=float, default=0.01, help="the change points' significance (default 0.01)")
+    p.add_argument("--alpha", type=cli.number(float, low=0.0, high=1.0, low_open=True, high_open=True), default=0.01, help="the change points' significance (default 0.01)")
     p.add_argument("-o", "--output", help="figure (PNG or SVG)")
     p.add_argument("-v", "--verbose", action="store_true", help="every run's median and interval")
     p.set_defaults(func=cmd_history)
@@ -194,7 +195,8 @@ def main(argv=None):
     add_filter_options(p, "b")
     p.add_argument("--experiment")
     p.add_argument("--case", help="case key pattern, SQL LIKE")
-    p.add_argument("--min-effect", type=float, default=store_compare.MIN_EFFECT)
+    p.add_argument("--min-effect", type=cli.number(float, low=1.0), default=store_compare.MIN_EFFECT,
+                   help="the smallest ratio B / A called a change (>= 1; default %(default)s)")
     p.set_defaults(func=cmd_compare)
     p = sub.add_parser("fleet", help="the fleet page (HTML)")
     p.add_argument("-o", "--output", default="fleet.html")
@@ -217,4 +219,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

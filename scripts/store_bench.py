@@ -15,6 +15,7 @@ import tempfile
 import time
 import uuid
 
+from oitbench import cli, results
 from oitbench.store import StoreError, fleet, open_store, queries
 from oitbench.store import history as store_history
 
@@ -24,13 +25,14 @@ GRID = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--runs", type=int, default=1000)
+    ap.add_argument("--runs", type=cli.positive(int), default=1000, help="synthetic runs (default 1000)")
     ap.add_argument("--store", help="SQLite file or postgresql:// URL (default: a temp SQLite file)")
     ap.add_argument("--grid", default=GRID)
     args = ap.parse_args(argv)
-    with open(args.grid, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        header, grid = reader.fieldnames, list(reader)
+    header, grid = results.read_csv(args.grid)  # refuses a bad file with FILE:LINE (exit 2 through cli.run)
+    results.check_summary_header(args.grid, header)  # FILE:1 unless a summary file with every required column
+    if not [r for r in grid if r.get("status") == "ok" and r.get("pass") == "total"]:
+        raise results.ResultsError(f"{args.grid}:2: no ok row to copy (the grid needs at least one)")
     tmp = tempfile.mkdtemp(prefix="oitbench-store-bench-")
     url = args.store or os.path.join(tmp, "bench.sqlite")
     rng = random.Random(7)
@@ -72,4 +74,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli.run(main))

@@ -2,12 +2,15 @@
 // Small helpers every technique family's case (and the scene and model code that explains a
 // validation failure) shares, written once.
 #include <glm/glm.hpp>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "core/registry.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_objects.hpp"
+#include "oit/scene/shadow_map.hpp"
 
 namespace oitbench::oit {
 
@@ -30,6 +33,19 @@ inline std::vector<float> rgb_of(const std::vector<float>& rgba) {
 // Sets a program's `viewProj` uniform.
 inline void set_view_proj(const gl::Program& prog, const glm::mat4& vp) {
   glProgramUniformMatrix4fv(prog.get(), glGetUniformLocation(prog.get(), "viewProj"), 1, GL_FALSE, &vp[0][0]);
+}
+
+// The self-shadowing pass's own checks (scene_passes.hpp) in a case's metrics and problems.
+inline void merge_shadow_check(std::map<std::string, std::string>& metrics, std::vector<std::string>& problems,
+                               const ShadowCheck& shadow) {
+  metrics.insert(shadow.metrics.begin(), shadow.metrics.end());
+  problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
+}
+
+// The end of every case's validate(): valid when nothing is wrong, the problems joined as the reason.
+inline void conclude(Validation& v, const std::vector<std::string>& problems) {
+  v.valid = problems.empty();
+  for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
 }
 
 }  // namespace oitbench::oit

@@ -367,13 +367,8 @@ class ApproxCase final : public OitCase {
                          " channel value(s) differ from the technique's CPU model by more "
                          "than 3/255; first: " +
                          first_off);
-    {
-      auto shadow = passes_.validate_shadow();
-      m.insert(shadow.metrics.begin(), shadow.metrics.end());
-      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
-    }
-    v.valid = problems.empty();
-    for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
+    merge_shadow_check(m, problems, passes_.validate_shadow());
+    conclude(v, problems);
     return v;
   }
 

@@ -262,32 +262,9 @@ class ExactCase final : public OitCase {
     HostLists host = native_ ? std::move(host_) : lists_->read_back();
     ListStats stats = list_stats(host);
     const Backdrop backdrop = passes_.read_backdrop();
-    m["total_fragments"] = std::to_string(stats.total_fragments);
-    m["peak_depth"] = std::to_string(stats.peak_depth);
-    m["mean_depth"] = fmt(stats.mean_depth);
-    m["max_frags_used"] = std::to_string(max_frags_);
-    m["node_pool"] = std::to_string(lists_->pool());
-    m["node_pool_bytes"] = std::to_string(lists_->bytes());
-    m["node_buffers"] = std::to_string(lists_->buffers());
-    m["bytes_per_pixel"] = fmt(static_cast<double>(lists_->bytes()) / (static_cast<double>(width_) * height_));
-    if (!count_ms_.empty()) m["capture_count_ms"] = fmt(median_of(count_ms_));
-    if (auto_) {
-      m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
-      m["bma_auto_source"] = auto_choice_.source;
-      m["bma_auto_timings"] = auto_choice_.timings;
-    }
-    m["overflow_rerenders"] = std::to_string(overflow_rerenders_);
     size_t truncated = 0;
     for (unsigned d : stats.depth) truncated += d > max_frags_;
-    m["truncated_pixels"] = std::to_string(truncated);
-    if (!capture_ms_.empty()) m["fragments_per_s"] = fmt(stats.total_fragments / (median_of(capture_ms_) / 1000.0));
-    if (bma_) {
-      std::string s;
-      for (size_t i = 0; i < interval_tops_.size(); ++i)
-        if (i < interval_pixels_.size() && interval_pixels_[i])
-          s += (s.empty() ? "" : " ") + std::to_string(interval_tops_[i]) + ":" + std::to_string(interval_pixels_[i]);
-      m["bma_intervals"] = s;
-    }
+    record_storage_metrics(m, stats, truncated);
     std::vector<std::string> problems;
     if (!host.error.empty()) problems.push_back(host.error);
     if (!stats.error.empty()) problems.push_back(stats.error);
@@ -342,6 +319,52 @@ class ExactCase final : public OitCase {
     // order (geometric_reference.hpp), so a capture that loses precision, a fragment or the order is
     // caught even though the reference above, built from the same captured fragments, agrees.
     // (Only where transparency is the one effect: the geometry knows no opaque pass or shading.)
+    check_against_planes(rgba, stats, m, problems);
+    // llvmpipe ends a shader invocation's loops after 65535 iterations in total (gallivm's
+    // LP_MAX_TGSI_LOOP_ITERATIONS): deep reverse insertion sorts and wide k-way merges pass it.
+    double loop_steps = std::max(0.5 * stats.peak_depth * stats.peak_depth,
+                                 static_cast<double>(stats.peak_depth) * max_frags_ / std::max(1, block_));
+    if (!problems.empty() && !native_ && ctx_.gl().is_software_renderer() && loop_steps > 65535)
+      problems.push_back(
+          "likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
+          "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" +
+          fmt(loop_steps) + " per pixel");
+    merge_shadow_check(m, problems, passes_.validate_shadow());
+    conclude(v, problems);
+    return v;
+  }
+  // What the capture held: sizes, storage, BMA's intervals and BMA-AUTO's choice.
+  void record_storage_metrics(std::map<std::string, std::string>& m, const ListStats& stats, size_t truncated) {
+    m["total_fragments"] = std::to_string(stats.total_fragments);
+    m["peak_depth"] = std::to_string(stats.peak_depth);
+    m["mean_depth"] = fmt(stats.mean_depth);
+    m["max_frags_used"] = std::to_string(max_frags_);
+    m["node_pool"] = std::to_string(lists_->pool());
+    m["node_pool_bytes"] = std::to_string(lists_->bytes());
+    m["node_buffers"] = std::to_string(lists_->buffers());
+    m["bytes_per_pixel"] = fmt(static_cast<double>(lists_->bytes()) / (static_cast<double>(width_) * height_));
+    if (!count_ms_.empty()) m["capture_count_ms"] = fmt(median_of(count_ms_));
+    if (auto_) {
+      m["bma_auto_choice"] = describe_choice(interval_tops_, auto_choice_);
+      m["bma_auto_source"] = auto_choice_.source;
+      m["bma_auto_timings"] = auto_choice_.timings;
+    }
+    m["overflow_rerenders"] = std::to_string(overflow_rerenders_);
+    m["truncated_pixels"] = std::to_string(truncated);
+    if (!capture_ms_.empty()) m["fragments_per_s"] = fmt(stats.total_fragments / (median_of(capture_ms_) / 1000.0));
+    if (bma_) {
+      std::string s;
+      for (size_t i = 0; i < interval_tops_.size(); ++i)
+        if (i < interval_pixels_.size() && interval_pixels_[i])
+          s += (s.empty() ? "" : " ") + std::to_string(interval_tops_[i]) + ":" + std::to_string(interval_pixels_[i]);
+      m["bma_intervals"] = s;
+    }
+  }
+
+  // Analytic scenes: the image against the scene's own planes (a reference that shares nothing with
+  // the captured fragments).
+  void check_against_planes(const std::vector<float>& rgba, const ListStats& stats,
+                            std::map<std::string, std::string>& m, std::vector<std::string>& problems) {
     auto geo = passes_.effects() == std::vector<std::string>{"transparency"}
                    ? geometric_reference(scene_, view_, detail_, near_far_, width_, height_, format_.colour)
                    : std::nullopt;
@@ -366,23 +389,6 @@ class ExactCase final : public OitCase {
         problems.push_back(why);
       }
     }
-    // llvmpipe ends a shader invocation's loops after 65535 iterations in total (gallivm's
-    // LP_MAX_TGSI_LOOP_ITERATIONS): deep reverse insertion sorts and wide k-way merges pass it.
-    double loop_steps = std::max(0.5 * stats.peak_depth * stats.peak_depth,
-                                 static_cast<double>(stats.peak_depth) * max_frags_ / std::max(1, block_));
-    if (!problems.empty() && !native_ && ctx_.gl().is_software_renderer() && loop_steps > 65535)
-      problems.push_back(
-          "likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
-          "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" +
-          fmt(loop_steps) + " per pixel");
-    {
-      auto shadow = passes_.validate_shadow();
-      m.insert(shadow.metrics.begin(), shadow.metrics.end());
-      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
-    }
-    v.valid = problems.empty();
-    for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
-    return v;
   }
 
  private:

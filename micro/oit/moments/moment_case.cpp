@@ -250,11 +250,7 @@ class MboitCase final : public OitCase {
     if (!dump_.empty()) write_result_images(dump_, rgb, ref, width_, height_);
 
     std::vector<std::string> problems;
-    {
-      auto shadow = view_.fx->validate_shadow();
-      m.insert(shadow.metrics.begin(), shadow.metrics.end());
-      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
-    }
+    merge_shadow_check(m, problems, view_.fx->validate_shadow());
     if (!stats.error.empty()) problems.push_back(stats.error);
     if (check.nonfinite)
       problems.push_back(std::to_string(check.nonfinite) + " non-finite channel value(s) (NaN or Inf)");
@@ -269,8 +265,7 @@ class MboitCase final : public OitCase {
       problems.push_back(std::to_string(check.off) +
                          " channel value(s) differ from MBOIT's CPU model by more than 4/255 (" +
                          std::to_string(allowed) + " allowed); first: " + check.first_off);
-    v.valid = problems.empty();
-    for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
+    conclude(v, problems);
     return v;
   }
 

@@ -321,11 +321,7 @@ class PeelCase final : public OitCase {
     if (!dump_.empty()) write_result_images(dump_, rgb, ref, width_, height_);
 
     std::vector<std::string> problems;
-    {
-      auto shadow = fx_.validate_shadow();
-      m.insert(shadow.metrics.begin(), shadow.metrics.end());
-      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
-    }
+    merge_shadow_check(m, problems, fx_.validate_shadow());
     if (!host_.error.empty()) problems.push_back(host_.error);
     if (!stats.error.empty()) problems.push_back(stats.error);
     if (nonfinite) problems.push_back(std::to_string(nonfinite) + " non-finite channel value(s) (NaN or Inf)");
@@ -348,8 +344,7 @@ class PeelCase final : public OitCase {
                            " iteration(s); the deepest pixel has " + std::to_string(deepest) + " layer(s), so " +
                            std::to_string(expected) + " were due");
     }
-    v.valid = problems.empty();
-    for (const auto& x : problems) v.reason += (v.reason.empty() ? "" : "; ") + x;
+    conclude(v, problems);
     return v;
   }
 

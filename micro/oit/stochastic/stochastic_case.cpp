@@ -191,11 +191,7 @@ class StochasticCase final : public OitCase {
     if (!dump_.empty()) write_result_images(dump_, rgb, ref, width_, height_);
 
     std::vector<std::string> problems;
-    {
-      auto shadow = view_.fx->validate_shadow();
-      m.insert(shadow.metrics.begin(), shadow.metrics.end());
-      problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
-    }
+    merge_shadow_check(m, problems, view_.fx->validate_shadow());
     if (!stats.error.empty()) problems.push_back(stats.error);
     if (coverage_lost_) problems.push_back("the MSAA coverage record lost fragments");
     if (check.nonfinite)
@@ -206,8 +202,7 @@ class StochasticCase final : public OitCase {
                          " channel value(s) differ from STOCHASTIC's CPU model (same masks) by more than 2/255; "
                          "first: " +
                          check.first_off);
-    v.valid = problems.empty();
-    for (const auto& s : problems) v.reason += (v.reason.empty() ? "" : "; ") + s;
+    conclude(v, problems);
     return v;
   }
 

@@ -9,6 +9,7 @@ import math
 import re
 import uuid
 
+from oitbench import results
 from oitbench.store.sqlschema import CSV_SCHEMA, PARAMETERS, RAW_TYPES, SUMMARY_TYPES
 
 _INTEGER = re.compile(r"^[+-]?\d+$")
@@ -46,10 +47,10 @@ def read(path):
             data = f.read()
     except OSError as e:
         raise CsvRefused(f"{path}: cannot read ({e.strerror})") from e
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as e:
-        raise CsvRefused(f"{path}: not a text file (not UTF-8 at byte {e.start})") from e
+    try:  # the library's careful reader: not UTF-8, or a NUL byte, with the line of the first bad byte
+        text = results.read_text(path)
+    except results.ResultsError as e:
+        raise CsvRefused(f"{e}; nothing stored from this file") from e
     if not text:
         raise CsvRefused(f"{path}: empty file")
     reader = csv.reader(io.StringIO(text, newline=""))
