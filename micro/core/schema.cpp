@@ -58,8 +58,11 @@ namespace {
 using T = ValueType;
 }  // namespace
 
-const std::vector<ColumnSpec>& summary_base_columns() {
-  static const std::vector<ColumnSpec> cols = {
+namespace {
+
+// What a row is and where it ran: the case, its status, the context and driver.
+std::vector<ColumnSpec> identity_columns() {
+  return {
       {"schema", T::Integer, "", "version of this column layout (kCsvSchema)", "run"},
       {"experiment", T::Text, "", "experiment name (oitbench list)", "case"},
       {"variant", T::Text, "", "the experiment's variant parameter, where it has one", "case"},
@@ -86,6 +89,12 @@ const std::vector<ColumnSpec>& summary_base_columns() {
        "the GPU driver's version as NVML reports it (nvmlSystemGetDriverVersion), where GL_VENDOR is NVIDIA's and "
        "libnvidia-ml.so.1 loads; empty elsewhere",
        "run"},
+  };
+}
+
+// How the case was timed: size, repetitions, statistics, speedups, the clocks' and GPU state.
+std::vector<ColumnSpec> timing_columns() {
+  return {
       {"width", T::Integer, "px", "render target width", "case"},
       {"height", T::Integer, "px", "render target height", "case"},
       {"reps", T::Integer, "",
@@ -161,6 +170,12 @@ const std::vector<ColumnSpec>& summary_base_columns() {
       {"gpu_temp_end_c", T::Integer, "C", "the GPU temperature at the end of the case group", "timing"},
       {"gpu_power_start_w", T::Number, "W", "the board power draw (NVML) at the start of the case group", "timing"},
       {"gpu_power_end_w", T::Number, "W", "the board power draw at the end of the case group", "timing"},
+  };
+}
+
+// Which run and machine wrote the row: preset, shard, commit, host, run identity, CPU, Mesa/LLVM.
+std::vector<ColumnSpec> provenance_columns() {
+  return {
       {"preset", T::Text, "", "the preset the row ran under, if any", "run"},
       {"shard", T::Text, "",
        "I/N: the row ran in shard I of N (--shard; the N shards' rows together are the whole grid, each case "
@@ -199,6 +214,16 @@ const std::vector<ColumnSpec>& summary_base_columns() {
        "the vector width llvmpipe targets, from GL_RENDERER (256: AVX2; LP_NATIVE_VECTOR_WIDTH changes it)", "run"},
       {"parameters", T::Text, "", "the parameter columns this case uses, NAME;NAME;...", "case"},
   };
+}
+
+}  // namespace
+
+const std::vector<ColumnSpec>& summary_base_columns() {
+  static const std::vector<ColumnSpec> cols = [] {
+    std::vector<ColumnSpec> c = identity_columns();
+    for (auto part : {timing_columns(), provenance_columns()}) c.insert(c.end(), part.begin(), part.end());
+    return c;
+  }();
   return cols;
 }
 
