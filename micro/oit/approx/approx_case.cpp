@@ -116,29 +116,7 @@ class ApproxCase final : public OitCase {
     glm::mat4 pm = vp * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
 
-    // The fragments, once: the exact reference and every model work on these. With the opaque
-    // effect: every transparent fragment, hidden by the CPU against the opaque pass's depth (the
-    // reference does not trust the technique's own depth test).
-    passes_.draw_opaque();
-    backdrop_ = passes_.read_backdrop();
-    size_t pixels = static_cast<size_t>(width_) * height_;
-    lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
-    auto capture = build_capture_programs(
-        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
-        passes_.geometry_defines());
-    for (const auto& prog : capture) {
-      set_view_proj(prog, vp);
-      passes_.bind_geometry(prog.get());
-    }
-    out_.bind();
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    lists_->capture(ids(capture), [&] { passes_.transparent().draw(); });
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    host_ = visible_fragments(lists_->read_back(), backdrop_, hidden_);
-    lists_.reset();  // its pool is not needed for timing
+    capture_reference_fragments(p, ctx, vp);
 
     Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
     if (settings_.unguarded) d.push_back({"APPROX_UNGUARDED", ""});
@@ -187,6 +165,33 @@ class ApproxCase final : public OitCase {
       blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
     }
+  }
+
+  // The fragments, once, for the exact reference and the technique's CPU model.
+  void capture_reference_fragments(const ParamSet& p, CaseContext& ctx, const glm::mat4& vp) {
+    // The fragments, once: the exact reference and every model work on these. With the opaque
+    // effect: every transparent fragment, hidden by the CPU against the opaque pass's depth (the
+    // reference does not trust the technique's own depth test).
+    passes_.draw_opaque();
+    backdrop_ = passes_.read_backdrop();
+    size_t pixels = static_cast<size_t>(width_) * height_;
+    lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
+    auto capture = build_capture_programs(
+        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+        passes_.geometry_defines());
+    for (const auto& prog : capture) {
+      set_view_proj(prog, vp);
+      passes_.bind_geometry(prog.get());
+    }
+    out_.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    lists_->capture(ids(capture), [&] { passes_.transparent().draw(); });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    host_ = visible_fragments(lists_->read_back(), backdrop_, hidden_);
+    lists_.reset();  // its pool is not needed for timing
   }
 
   GLuint opaque_texture() const override { return passes_.opaque_texture(); }

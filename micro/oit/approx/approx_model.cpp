@@ -270,6 +270,56 @@ void arrival_order(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
 }
 }  // namespace
 
+namespace {
+
+// HT on the CPU: the core of the n nearest fragments in `s`, then the tail averaged behind it.
+glm::vec3 ht_pixel(const std::vector<Frag>& frags, std::vector<Node>& s, int n, glm::vec3 bg) {
+  // The core: the n nearest fragments in (depth, colour) order, as shaders/approx/insert/ht.glsl.
+  std::fill(s.begin(), s.end(), Node(0u));
+  for (const auto& f : frags) {
+    unsigned key = pack4(f.colour);
+    float z = f.depth;
+    for (int i = 0; i < n; ++i) {
+      float nz = node_depth(s[i]);
+      if (z < nz || (z == nz && key < s[i].x)) {
+        Node old = s[i];
+        s[i] = {key, encode_depth(z)};
+        if (nz == kDepthEmpty) break;
+        key = old.x;
+        z = nz;
+      }
+    }
+  }
+  glm::vec3 acc(0.0f);
+  float t = 1.0f;
+  for (const Node& node : s) {
+    glm::vec4 k = unpack4(node.x);
+    acc += t * k.w * glm::vec3(k);
+    t *= 1.0f - k.w;
+  }
+  // The tail (ht_tail.frag): every fragment behind a full core's last node, averaged.
+  const Node last = s[n - 1];
+  const float last_z = node_depth(last);
+  glm::vec4 sum(0.0f);
+  float count = 0.0f;
+  for (const auto& f : frags) {
+    unsigned key = pack4(f.colour);
+    if (last_z != kDepthEmpty && (f.depth > last_z || (f.depth == last_z && key > last.x))) {
+      sum += glm::vec4(glm::vec3(f.colour) * f.colour.w, f.colour.w);
+      count += 1.0f;
+    }
+  }
+  glm::vec3 tail(0.0f);
+  float tail_t = 1.0f;
+  if (count > 0.0f) {
+    tail_t = std::pow(std::clamp(1.0f - sum.w / count, 0.0f, 1.0f), count);
+    if (sum.w > 0.0f) tail = glm::vec3(sum) / sum.w * (1.0f - tail_t);
+  }
+  return acc + t * (tail + tail_t * bg);
+}
+
+}  // namespace
+
 ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const ApproxSettings& st) {
   size_t pixels = l.heads.size();
   const int n = st.nodes;
@@ -286,48 +336,7 @@ ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const App
     const glm::vec3 bg = backdrop.at(p);
     glm::vec3 c = bg;
     if (tech == T::Ht) {
-      // The core: the n nearest fragments in (depth, colour) order, as shaders/approx/insert/ht.glsl.
-      std::fill(s.begin(), s.end(), Node(0u));
-      for (const auto& f : frags) {
-        unsigned key = pack4(f.colour);
-        float z = f.depth;
-        for (int i = 0; i < n; ++i) {
-          float nz = node_depth(s[i]);
-          if (z < nz || (z == nz && key < s[i].x)) {
-            Node old = s[i];
-            s[i] = {key, encode_depth(z)};
-            if (nz == kDepthEmpty) break;
-            key = old.x;
-            z = nz;
-          }
-        }
-      }
-      glm::vec3 acc(0.0f);
-      float t = 1.0f;
-      for (const Node& node : s) {
-        glm::vec4 k = unpack4(node.x);
-        acc += t * k.w * glm::vec3(k);
-        t *= 1.0f - k.w;
-      }
-      // The tail (ht_tail.frag): every fragment behind a full core's last node, averaged.
-      const Node last = s[n - 1];
-      const float last_z = node_depth(last);
-      glm::vec4 sum(0.0f);
-      float count = 0.0f;
-      for (const auto& f : frags) {
-        unsigned key = pack4(f.colour);
-        if (last_z != kDepthEmpty && (f.depth > last_z || (f.depth == last_z && key > last.x))) {
-          sum += glm::vec4(glm::vec3(f.colour) * f.colour.w, f.colour.w);
-          count += 1.0f;
-        }
-      }
-      glm::vec3 tail(0.0f);
-      float tail_t = 1.0f;
-      if (count > 0.0f) {
-        tail_t = std::pow(std::clamp(1.0f - sum.w / count, 0.0f, 1.0f), count);
-        if (sum.w > 0.0f) tail = glm::vec3(sum) / sum.w * (1.0f - tail_t);
-      }
-      c = acc + t * (tail + tail_t * bg);
+      c = ht_pixel(frags, s, n, bg);
     } else if (tech == T::Unsorted) {
       for (const auto& f : frags) c = glm::vec3(f.colour) * f.colour.a + c * (1.0f - f.colour.a);
     } else if (tech == T::Wboit) {

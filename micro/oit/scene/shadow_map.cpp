@@ -274,6 +274,46 @@ OpacityShadowMap::LightFragments& OpacityShadowMap::light_fragments() {
   return *light_;
 }
 
+namespace {
+
+double alpha_of(unsigned colour) { return static_cast<double>(colour >> 24) / 255.0; }
+
+// The exact reference, a deep shadow map, against the opacity map `cpu` (optical depth per layer):
+// (sum of squared, largest absolute) transmittance errors over every light fragment.
+std::pair<double, double> deep_shadow_error(const HostLists& host, const std::vector<double>& cpu, size_t texels,
+                                            int slices_, double near_, double far_) {
+  double sum_sq = 0, max_abs = 0;
+  std::vector<std::pair<float, double>> column;  // (window depth, alpha)
+  const double nf2 = 2.0 * near_ * far_, fpn = far_ + near_, fmn = far_ - near_;
+  for (size_t p = 0; p < texels; ++p) {
+    column.clear();
+    for (unsigned node = host.heads[p]; node != kListEnd; node = host.next[node])
+      column.emplace_back(glm::uintBitsToFloat(host.nodes[node].y), alpha_of(host.nodes[node].x));
+    std::sort(column.begin(), column.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    double in_front = 1.0;
+    for (size_t i = 0; i < column.size();) {
+      size_t j = i;
+      double group = 1.0;
+      for (; j < column.size() && column[j].first == column[i].first; ++j) {
+        const double w = nf2 / (fpn - (2.0 * column[j].first - 1.0) * fmn);  // light-view distance
+        const double s = std::clamp((w - near_) / fmn, 0.0, 1.0) * slices_;
+        const int k = std::min(static_cast<int>(s), slices_ - 1);
+        const double t = s - k;
+        const double tau = (1.0 - t) * cpu[k * texels + p] + t * cpu[(k + 1) * texels + p];
+        const double e = std::exp(-tau) - in_front;
+        sum_sq += e * e;
+        max_abs = std::max(max_abs, std::abs(e));
+        group *= 1.0 - column[j].second;
+      }
+      in_front *= group;
+      i = j;
+    }
+  }
+  return {sum_sq, max_abs};
+}
+
+}  // namespace
+
 ShadowCheck OpacityShadowMap::validate() {
   ShadowCheck check;
   auto& m = check.metrics;
@@ -310,7 +350,6 @@ ShadowCheck OpacityShadowMap::validate() {
   if (!host.error.empty()) check.problems.push_back("shadow light capture: " + host.error);
   std::vector<double> cpu(static_cast<size_t>(layers) * texels, 0.0);
   size_t fragments = 0, bad_ids = 0;
-  auto alpha_of = [](unsigned colour) { return static_cast<double>(colour >> 24) / 255.0; };
   for (size_t p = 0; p < texels; ++p)
     for (unsigned node = host.heads[p]; node != kListEnd; node = host.next[node]) {
       const unsigned id = host.nodes[node].x & 0xFFFFFFu;
@@ -352,33 +391,7 @@ ShadowCheck OpacityShadowMap::validate() {
   // The exact reference, a deep shadow map: per light pixel the fragments sorted by depth, each
   // lit by the product of (1 - alpha) of those strictly in front of it. The opacity map's
   // transmittance at the same fragments (its layers interpolated at their slice position) is compared.
-  double sum_sq = 0, max_abs = 0;
-  std::vector<std::pair<float, double>> column;  // (window depth, alpha)
-  const double nf2 = 2.0 * near_ * far_, fpn = far_ + near_, fmn = far_ - near_;
-  for (size_t p = 0; p < texels; ++p) {
-    column.clear();
-    for (unsigned node = host.heads[p]; node != kListEnd; node = host.next[node])
-      column.emplace_back(glm::uintBitsToFloat(host.nodes[node].y), alpha_of(host.nodes[node].x));
-    std::sort(column.begin(), column.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    double in_front = 1.0;
-    for (size_t i = 0; i < column.size();) {
-      size_t j = i;
-      double group = 1.0;
-      for (; j < column.size() && column[j].first == column[i].first; ++j) {
-        const double w = nf2 / (fpn - (2.0 * column[j].first - 1.0) * fmn);  // light-view distance
-        const double s = std::clamp((w - near_) / fmn, 0.0, 1.0) * slices_;
-        const int k = std::min(static_cast<int>(s), slices_ - 1);
-        const double t = s - k;
-        const double tau = (1.0 - t) * cpu[k * texels + p] + t * cpu[(k + 1) * texels + p];
-        const double e = std::exp(-tau) - in_front;
-        sum_sq += e * e;
-        max_abs = std::max(max_abs, std::abs(e));
-        group *= 1.0 - column[j].second;
-      }
-      in_front *= group;
-      i = j;
-    }
-  }
+  auto [sum_sq, max_abs] = deep_shadow_error(host, cpu, texels, slices_, near_, far_);
   m["shadow_rmse"] = fmt(fragments ? std::sqrt(sum_sq / static_cast<double>(fragments)) : 0.0);
   m["shadow_max_abs_error"] = fmt(max_abs);
   return check;
