@@ -9,6 +9,7 @@ gl::Program CaseContext::build(const std::vector<ShaderStage>& stages, Defines d
   if (fault_ == "compile-error") defines.emplace_back("OITBENCH_FAULT_COMPILE_ERROR", "1");
   if (fault_ == "hang") defines.emplace_back("OITBENCH_FAULT_HANG", "1");
   if (fault_ == "lose-fragment") defines.emplace_back("OITBENCH_FAULT_LOSE_FRAGMENT", "1");
+  const auto compiling = phase(Phase::Compile);
   return shaders_.build(stages, defines);
 }
 

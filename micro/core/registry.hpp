@@ -12,6 +12,7 @@
 
 #include "backends/backend.hpp"
 #include "core/params.hpp"
+#include "core/phases.hpp"
 #include "core/schema.hpp"
 #include "core/shared_cache.hpp"
 #include "core/timer.hpp"
@@ -40,7 +41,8 @@ struct Validation {
 class CaseContext {
  public:
   CaseContext(const ShaderLibrary& shaders, const GlInfo& gl, Resolution res, std::string fault, unsigned seed,
-              std::string image_stem = "", bool gpu_clock = false, SharedCache* shared = nullptr)
+              std::string image_stem = "", bool gpu_clock = false, SharedCache* shared = nullptr,
+              PhaseClock* phases = nullptr)
       : shaders_(shaders),
         gl_(gl),
         res_(res),
@@ -48,7 +50,8 @@ class CaseContext {
         seed_(seed),
         image_stem_(std::move(image_stem)),
         gpu_clock_(gpu_clock),
-        shared_(shared) {}
+        shared_(shared),
+        phases_(phases) {}
   const ShaderLibrary& shaders() const { return shaders_; }
   const GlInfo& gl() const { return gl_; }
   int width() const { return res_.width; }
@@ -63,7 +66,12 @@ class CaseContext {
   bool gpu_clock() const { return gpu_clock_; }
   // What the run's cases share (a scene's meshes); null where nothing is shared (each case builds its own).
   SharedCache* shared() const { return shared_; }
-  // Compiles with the experiment's defines plus the fault define (OITBENCH_FAULT_WRONG_RESULT, ...).
+  // A stretch of the case's own work in a finer phase of the time account (core/phases.hpp): pool
+  // sizing, read-back, the reference. A no-op where the run keeps no account (the viewer, tests).
+  PhaseClock::Scope phase(Phase p) const { return PhaseClock::Scope(phases_, p); }
+  PhaseClock* phase_clock() const { return phases_; }  // for a case that keeps it (null: no account)
+  // Compiles with the experiment's defines plus the fault define (OITBENCH_FAULT_WRONG_RESULT, ...);
+  // its time is the account's compile phase.
   gl::Program build(const std::vector<ShaderStage>& stages, Defines defines) const;
 
  private:
@@ -75,6 +83,7 @@ class CaseContext {
   std::string image_stem_;
   bool gpu_clock_;
   SharedCache* shared_;
+  PhaseClock* phases_;
 };
 
 class CaseInstance {

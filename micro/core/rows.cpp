@@ -84,6 +84,10 @@ std::vector<Row> summary_rows(const RowSettings& s, const CaseRecord& c) {
   for (const auto& pass : passes) {
     Row row = base;
     row["pass"] = pass;
+    if (pass == "total" && c.accounted) {  // the case's time, once: on its total row
+      row["case_wall_s"] = fmt_number(c.phases.total());
+      for (Phase ph : kAllPhases) row[phase_column(ph)] = fmt_number(c.phases[ph]);
+    }
     std::string reason = c.status == Status::Ok ? c.note : c.reason;
     auto cpu = c.cpu.find(pass);
     if (c.status == Status::Ok && cpu != c.cpu.end()) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/phases.hpp"
 #include "core/registry.hpp"
 #include "core/sampling.hpp"
 #include "core/schema.hpp"
@@ -36,6 +37,8 @@ struct CaseRecord {
   std::string stop;                             // why the repetitions stopped (stop_reason_name)
   std::string baseline;                         // NAME=VALUE;... of the case the speedup divides by (empty: none)
   const CaseRecord* baseline_record = nullptr;  // that case's record, run in the same group (null: no speedup)
+  PhaseTimes phases;                            // where its wall time went (core/phases.hpp)
+  bool accounted = false;                       // the runner kept that account (case_wall_s and phase_*_s)
 
   void fail(Status s, const std::string& why);  // the first failure is the one kept
   // Appends to what the rows' reason will say: the note of an ok case, the reason of another.

@@ -17,6 +17,7 @@
 #include "core/interrupt.hpp"
 #include "core/isolation.hpp"
 #include "core/outcomes.hpp"
+#include "core/phases.hpp"
 #include "core/plan.hpp"
 #include "core/progress.hpp"
 #include "core/rows.hpp"
@@ -52,6 +53,23 @@ std::string gl_error_text() {
   }
   return s;
 }
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// While alive, the run's clock charges `times`' phase `p`; at its end the group's own work (`after`) again.
+class Charging {
+ public:
+  Charging(PhaseClock& clock, PhaseTimes& times, Phase p, PhaseTimes& after) : clock_(clock), after_(after) {
+    clock_.attach(&times, p);
+  }
+  Charging(const Charging&) = delete;
+  Charging& operator=(const Charging&) = delete;
+  ~Charging() { clock_.attach(&after_, Phase::Other); }
+
+ private:
+  PhaseClock& clock_;
+  PhaseTimes& after_;
+};
 
 // A case in flight: its record and, while it runs, its instance.
 struct LiveCase {
@@ -126,6 +144,7 @@ class Runner {
     for (const auto& u : units) total_cases += u.rows();
     progress_ = std::make_unique<Progress>(opt_.progress, total_cases);
     watchdog_ = std::make_unique<Watchdog>(opt_.timeout_s, opt_.out, opt_.progress);
+    account_.start_s = seconds_since(opt_.started);
     for (const auto& u : units) {
       if (signals_.stopped()) break;
       if (u.isolated)
@@ -139,6 +158,7 @@ class Runner {
       std::fprintf(stderr, "oitbench: %zu case(s): %d ok, %d invalid, %d unsupported, %d error, %d timeout -> %s\n",
                    cases_done_, counts_[Status::Ok], counts_[Status::Invalid], counts_[Status::Unsupported],
                    counts_[Status::Error], counts_[Status::Timeout], opt_.out == "-" ? "stdout" : opt_.out.c_str());
+    if (!opt_.isolated_child) std::fprintf(stderr, "%s\n", account_.summary_line(seconds_since(opt_.started)).c_str());
     if (signals_.stopped()) {
       std::fprintf(stderr, "oitbench: interrupted; the %zu finished row(s) are in %s\n", writer_->rows_written(),
                    opt_.out.c_str());
@@ -222,7 +242,7 @@ class Runner {
     }
     try {
       CaseContext cctx(*shaders_, gl_, res, rec.params.get("fault"), static_cast<unsigned>(rec.params.get_int("seed")),
-                       opt_.image_stem, use_gpu_timer_, shared_.get());
+                       opt_.image_stem, use_gpu_timer_, shared_.get(), &clock_);
       glFinish();
       auto t0 = Clock::now();
       auto before = shaders_->cache_counts();
@@ -277,6 +297,7 @@ class Runner {
     std::vector<double> last_ms, warm_scale, scale;  // the last warm-up's time, the warm-up's and the samples' scale
     std::vector<bool> done;                          // a case whose interval reached the target stops
     StopReason why = StopReason::Continue;
+    PhaseTimes overhead;  // the runner's own work for the group, shared among its cases at the end
     GroupRun(const Planned& plan, const GroupPlan& g, RowSettings s, bool queries, bool sync)
         : p(plan),
           group(g),
@@ -289,9 +310,17 @@ class Runner {
           done(live.size(), false) {}
   };
 
+  // Keeps the run's clock off a group's records once the group is gone.
+  struct Detach {
+    PhaseClock& clock;
+    ~Detach() { clock.attach(nullptr, Phase::Other); }
+  };
+
   void run_group(const Planned& p, const GroupPlan& group) {
     // Query results recorded always; the primary clock only where trusted.
     GroupRun g(p, group, row_settings(p), gl_.has_timer_query(), sync_passes_);
+    const Detach detach{clock_};
+    clock_.attach(&g.overhead, Phase::Other);
     prepare_group(g);
     const GpuReading gpu_start = gpu_.read();  // the clocks around the timed work (empty without NVML)
     warm_up(g);
@@ -308,6 +337,8 @@ class Runner {
       g.live[i].record = new_record(g.group.cases[i], g.p);
       if (!g.p.baseline.empty()) g.live[i].record.baseline = baseline_text(g.p.baseline);
       watchdog_->set_current(exp.name() + " " + g.group.cases[i].describe());
+      g.live[i].record.accounted = true;
+      const Charging charging(clock_, g.live[i].record.phases, Phase::Scene, g.overhead);
       prepare(exp, g.p.res, g.live[i]);
     }
     for (size_t i = 0; i < g.live.size(); ++i)
@@ -335,6 +366,7 @@ class Runner {
         try {
           std::vector<PassSample> samples;
           double total = 0;
+          const Charging charging(clock_, c.record.phases, Phase::Warmup, g.overhead);
           if (!run_sample(c, g.timer, 1, g.warm_scale[i], samples, total)) continue;
           if (r == -p.warmup) c.record.warmup_ms = total / g.warm_scale[i];
           g.last_ms[i] = total;
@@ -395,11 +427,18 @@ class Runner {
       if (!any_active) break;
       g.why = step_group(g.p.policy, totals, g.group.baseline_of, ms_since(timed_start) / 1000.0, g.done);
       if (g.why != StopReason::Continue) break;
+      std::vector<double> sampled(live.size());  // each case's timed seconds before this round
+      for (size_t i = 0; i < live.size(); ++i) sampled[i] = live[i].record.phases[Phase::Samples];
       timed_round(g, r, checked_size ? nullptr : &first_round_raw);
       if (!checked_size) {
         const bool resized = check_sizes(g);
         checked_size = !resized || ++size_checks >= kMaxSizeChecks;
         if (resized) {
+          for (size_t i = 0; i < live.size(); ++i) {  // the round was warm-up, in the account too
+            PhaseTimes& t = live[i].record.phases;
+            t[Phase::Warmup] += t[Phase::Samples] - sampled[i];
+            t[Phase::Samples] = sampled[i];
+          }
           for (auto& c : live) {
             c.record.cpu.clear();
             c.record.gpu.clear();
@@ -428,7 +467,10 @@ class Runner {
       try {
         std::vector<PassSample> samples;
         double total = 0;
-        if (!run_sample(c, g.timer, rec.sample_runs, g.scale[i], samples, total)) continue;
+        {
+          const Charging charging(clock_, rec.phases, Phase::Samples, g.overhead);
+          if (!run_sample(c, g.timer, rec.sample_runs, g.scale[i], samples, total)) continue;
+        }
         double gpu_total = rec.add_repetition(samples, total);
         if (raw_writer_) {
           auto rows = raw_rows(g.settings, rec, r, samples, total, gpu_total);
@@ -482,6 +524,7 @@ class Runner {
       auto& c = g.live[i];
       auto& rec = c.record;
       if (c.instance) {
+        const Charging charging(clock_, rec.phases, Phase::Validate, g.overhead);
         for (const auto& [k, v] : c.instance->metrics()) rec.metrics[k] = v;
         if (c.active()) validate(c);
       }
@@ -493,9 +536,22 @@ class Runner {
         if (auto note = ci_note(g.p.policy, rec.cpu.at("total"), case_why); !note.empty()) rec.add_note(note);
       }
     }
+    share_overhead(g);
     for (size_t i = 0; i < g.live.size(); ++i) {
       if (!g.group.shadow[i]) finish_case(summary, g.live[i].record);
       g.live[i].instance.reset();
+    }
+  }
+
+  // The group's own work so far, shared equally among its cases (their `other`), so that the cases'
+  // wall times add up to the group's; then every case's phases into the run's account. Writing the
+  // rows is the run's, timed apart (finish_case).
+  void share_overhead(GroupRun& g) {
+    clock_.attach(nullptr, Phase::Other);
+    const double share = g.overhead.total() / static_cast<double>(std::max<size_t>(1, g.live.size()));
+    for (auto& c : g.live) {
+      c.record.phases[Phase::Other] += share;
+      account_.cases += c.record.phases;
     }
   }
 
@@ -520,7 +576,9 @@ class Runner {
 
   void finish_case(const RowSettings& settings, const CaseRecord& rec) {
     const auto rows = summary_rows(settings, rec);
+    const auto t0 = Clock::now();
     write(*writer_, rows);
+    account_.write_s += seconds_since(t0);
     for (const auto& row : rows)
       if (row.count("pass") && row.at("pass") == "total") add_outcome(rec.key, row);
     ++counts_[rec.status];
@@ -602,6 +660,8 @@ class Runner {
     if (opt_.sync_passes) args.push_back("--sync-passes");
     // Only what the case uses: the child's grid gives the rest their defaults and marks them unused.
     for (const auto& [k, v] : params.used_values()) args.insert(args.end(), {"--set", k + "=" + v});
+    const auto started = Clock::now();
+    const double accounted = account_.cases.total();
     auto outcome = run_child(
         args, opt_.timeout_s, [this] { return signals_.stopped(); }, [this] { watchdog_->heartbeat(); });
     watchdog_->heartbeat();
@@ -625,6 +685,8 @@ class Runner {
       finish_case(row_settings(p), rec);
     }
     std::filesystem::remove_all(dir);
+    // The child's life apart from its case: process and context start, its writing.
+    account_.child_start_s += std::max(0.0, seconds_since(started) - (account_.cases.total() - accounted));
     progress_->report(exp.name(), cases_done_, 0, 1, 1);
   }
 
@@ -645,12 +707,27 @@ class Runner {
       into.write(row);
       if (!key.empty() && row["pass"] == "total") {
         add_outcome(key, row);
+        account_.cases += phases_of(row);
         for (Status s : kAllStatuses)
           if (row["status"] == status_name(s)) ++counts_[s];
         ++cases_done_;
       }
     }
     return rows.size() - 1;
+  }
+
+  // A copied row's time account (none where its columns are empty).
+  static PhaseTimes phases_of(const Row& row) {
+    PhaseTimes t;
+    for (Phase ph : kAllPhases) {
+      auto it = row.find(phase_column(ph));
+      if (it == row.end() || it->second.empty()) continue;
+      try {
+        t[ph] = std::stod(it->second);
+      } catch (const std::exception&) {
+      }
+    }
+    return t;
   }
 
   Registry& registry_;
@@ -674,6 +751,8 @@ class Runner {
   std::unique_ptr<Progress> progress_;
   std::unique_ptr<Watchdog> watchdog_;
   std::mutex mutex_;
+  PhaseClock clock_;    // the time account's clock: charges the case being worked on (core/phases.hpp)
+  RunAccount account_;  // the run's: its start, writing, children, every case's phases
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Runs experiments: expands grids, interleaves the cases' repetitions, validates, writes rows.
 // The pieces live beside it: rows.hpp (statistics into rows), provenance.hpp (what a row records
 // about the run), isolation.hpp (child processes, the watchdog), progress.hpp (the progress line).
+#include <chrono>
 #include <map>
 #include <optional>
 #include <string>
@@ -71,6 +72,8 @@ struct RunOptions {
   bool program_cache = true;    // reuse linked programs (glGetProgramBinary) across runs
   bool isolated_child = false;  // this process runs one case for a parent: no summary line
   std::string image_stem;       // render: where a case writes its images (CaseContext::image_stem)
+  // When the run began (the options are made first thing): its time account's start and wall time.
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
 
 // The size a request runs at: the command line's --resolution/--reps/--warmup first; then, on a hardware

@@ -159,6 +159,33 @@ std::vector<ColumnSpec> timing_columns() {
       {"program_cache", T::Text, "", "hit, miss, partial or off: whether compile_ms paid for compiling", "timing"},
       {"warmup_ms", T::Number, "ms",
        "the first (untimed) repetition, JIT included; where the work scales (sample_units), one unit of it", "timing"},
+      {"case_wall_s", T::Number, "s",
+       "the case's wall time, the sum of its phase_*_s columns (total row only): from its prepare to its validation's "
+       "end, the runner's own work in its interleaved group shared equally among the group's cases; the run's start "
+       "and the writing of rows are the run's (the summary line on stderr)",
+       "timing"},
+      {"phase_scene_s", T::Number, "s",
+       "of case_wall_s: preparing the case apart from compiling and pool sizing (scene build and upload, buffers, "
+       "render targets; a scene shared by the run is paid by the first case that draws it)",
+       "timing"},
+      {"phase_compile_s", T::Number, "s",
+       "of case_wall_s: compiling and linking programs (program-cache loads included), wherever the case did it",
+       "timing"},
+      {"phase_pool_s", T::Number, "s",
+       "of case_wall_s: sizing the case's storage (the capture that sizes a fragment pool, its overflow re-renders "
+       "and read-back)",
+       "timing"},
+      {"phase_warmup_s", T::Number, "s",
+       "of case_wall_s: untimed repetitions, and rounds the sample-size check took as warm-up", "timing"},
+      {"phase_samples_s", T::Number, "s", "of case_wall_s: the timed repetitions", "timing"},
+      {"phase_readback_s", T::Number, "s", "of case_wall_s: reading the result back for validation", "timing"},
+      {"phase_reference_s", T::Number, "s", "of case_wall_s: computing the CPU or geometric reference", "timing"},
+      {"phase_validate_s", T::Number, "s",
+       "of case_wall_s: validation apart from read-back and reference (comparison, metrics)", "timing"},
+      {"phase_other_s", T::Number, "s",
+       "of case_wall_s: the measured remainder (the runner's work between phases: progress, GPU state, the "
+       "stopping rule, raw rows)",
+       "timing"},
       {"gpu_sm_clock_start_mhz", T::Integer, "MHz",
        "the GPU's SM clock (NVML) just before the case group's first warm-up repetition; empty without NVML", "timing"},
       {"gpu_sm_clock_end_mhz", T::Integer, "MHz",

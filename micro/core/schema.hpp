@@ -19,7 +19,8 @@ class Registry;
 // 5: shard (--shard I/N),
 // and run identity (run_id, also in raw rows; tags) and the machine's (cpu_vendor/family/model_id/stepping,
 // cpu_isa, cpu_count, memory_bytes, kernel, machine_id, mesa_version, llvm_version, llvm_vector_bits).
-inline constexpr int kCsvSchema = 5;
+// 6: the time account (case_wall_s and phase_*_s, on total rows; core/phases.hpp).
+inline constexpr int kCsvSchema = 6;
 
 enum class Status { Ok, Invalid, Unsupported, Error, Timeout };
 inline constexpr Status kAllStatuses[] = {Status::Ok, Status::Invalid, Status::Unsupported, Status::Error,

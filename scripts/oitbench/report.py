@@ -16,6 +16,7 @@ from oitbench import casekey
 from oitbench import results as oitres
 from oitbench import figures as plot
 from oitbench import papers as tables
+from oitbench import timeaccount
 
 GENERATOR = "oitbench scripts/report.py"
 STATUSES = oitres.STATUSES
@@ -533,6 +534,28 @@ def paper_figure(page, table, inp, paper_rows, out_dir, failures):
                  f"{esc(table.name)}: the paper's speedup (hatched) beside ours (solid) over the same baseline, "
                  f"{len(pairs)} pair(s) from <code>{esc(inp.rel)}</code>",
                  (f"{table.name} against {inp.rel}", f"The figure of <code>{esc(table.name)}</code>"), failures)
+
+
+def time_section(page, inputs):
+    """Where the runs' time went (schema 6's time account): one line per file, preset and experiment with
+    the cases' wall time and the shares of timed samples, compile, warm-up, reference and validation,
+    scene and other. Nothing where no file has the account (older schemas)."""
+    rows = []
+    for inp in inputs:
+        for (preset, exp), acc in timeaccount.accounts(inp.run.rows).items():
+            rows.append([f'<a href="#{esc(inp.anchor)}">{esc(inp.rel)}</a>', esc(preset or "\u2014"), esc(exp),
+                         str(acc.cases), f"{acc.wall:.1f}"] +
+                        [f"{acc.share(name):.0f}" for name, _ in timeaccount.GROUPS])
+    if not rows:
+        return 0
+    page.section(2, "time", "Where the time went")
+    page.add("<p>Each case's wall time (<code>case_wall_s</code>, on its total row) split into phases "
+             "(<code>phase_*_s</code>; docs/measurement.md): the shares below are % of the cases' wall time. "
+             "The run's own start and the writing of rows are in oitbench's closing line on stderr, not here.</p>")
+    page.add(html_table(["file", "preset", "experiment", "cases", "wall s"] +
+                        [f"{name} %" for name, _ in timeaccount.GROUPS], rows,
+                        numeric=[False, False, False, True, True] + [True] * len(timeaccount.GROUPS)))
+    return len(rows)
 
 
 def fastest_section(page, inputs, out_dir, failures):
@@ -1193,6 +1216,7 @@ def build(args):
     failures = []
     n_figures = sum(run_block(page, inp, f, shared, args.out_dir, failures) for inp, f in zip(inputs, facts))
     n_fastest = fastest_section(page, inputs, args.out_dir, failures)
+    time_section(page, inputs)
     n_tables = tables_section(page, inputs, paper_dir, args.paper or shown_path(paper_dir), args.out_dir, failures)
     n_ab = ab_section(page, args.ab, args.out_dir, failures) if args.ab else 0
     n_images = gallery_section(page, images_dir, args.out_dir) if images_dir else 0

@@ -167,6 +167,26 @@ class ReportContent(ReportCase):
                        "How to read this page", 'href="#tables"'):
             self.assertIn(needle, page)
 
+    def test_the_time_account_gives_the_shares_per_preset_and_experiment(self):
+        phases = {"phase_samples_s": 6, "phase_compile_s": 1, "phase_warmup_s": 0.5, "phase_readback_s": 0.25,
+                  "phase_reference_s": 1, "phase_validate_s": 0.25, "phase_scene_s": 0.5, "phase_pool_s": 0.25,
+                  "phase_other_s": 0.25}
+        rows = [dict(r, preset="knowles2014", **(dict(phases, case_wall_s=10) if r["pass"] == "total" else {}))
+                for r in syn.oit_rows() if r.get("status", "ok") == "ok"]
+        path = syn.write_summary(self.path("account.csv"), rows, ["rmse", "max_abs_error"], ["scene", "max_frags"])
+        self.report(path)
+        page = read(self.path("report/index.html"))
+        self.assertIn("Where the time went", page)
+        section = page[page.index('id="time"'):]
+        cells = re.findall(r"<td[^>]*>([^<]*)</td>", section[:section.index("</table>")])
+        # knowles2014, oit: 32 cases of 10 s; samples 60 %, compile 10, warm-up 5, reference+validation 15,
+        # scene 8 (7.5 rounded half to even), other 2 (2.5)
+        self.assertEqual(cells, ["knowles2014", "oit", "32", "320.0", "60", "10", "5", "15", "8", "2"])
+        # Files of older schemas have no account: no section.
+        a, b = self.write_runs()
+        self.report(a, b, out="old")
+        self.assertNotIn("Where the time went", read(self.path("old/index.html")))
+
     def test_paper_tables_beside_ours_and_a_missing_paper_folder_said(self):
         a, b = self.write_runs()
         self.report(a, b, extra=("--paper", self.write_paper()))

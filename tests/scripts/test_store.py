@@ -122,6 +122,20 @@ class Backend:
             self.assertEqual(s.ingest(copy)[1], 0)
         print(f"{type(self).__name__}: {len(files)} files, {n_rows} rows, {n_samples} samples")
 
+    def test_a_schema_6_time_account_reads_back_value_for_value(self):
+        header = ("schema,experiment,variant,pass,status,valid,width,height,median_ms,driver,run_id,tags,"
+                  "case_wall_s,phase_samples_s,phase_reference_s,phase_other_s,parameters,size")
+        path = self.write("account.csv", header + "\n" + "".join(
+            f"6,occupancy,unrolled,total,ok,1,64,64,{1.5 + i},llvmpipe,0f8fad5b-d9cb-469f-a165-70867728950e,,"
+            f"{2.5 + i},{1.25 + i},0.75,0.5,size,{i}\n" for i in range(2)))
+        with open_store(self.url) as s:
+            self.assertEqual(s.ingest(path)[0], 2)
+            f, back = s.read_back(path)
+            for line, original, stored in zip(f.lines, f.rows, back):
+                for name in f.header:
+                    self.assertTrue(same_value(name, stored[name], original[name], f.types),
+                                    f"{line} {name}: stored {stored[name]!r}, file {original[name]!r}")
+
     def test_the_command_ingests_folders_and_lists_runs(self):
         small = self.small_csv()
         proc = store_cli(self.url, "ingest", small)
@@ -195,9 +209,11 @@ class Backend:
             s.ingest(self.small_csv())
             with s._write_transaction() as cur:
                 cur.execute('ALTER TABLE rows DROP COLUMN "machine_id"')
+                cur.execute('ALTER TABLE rows DROP COLUMN "phase_samples_s"')  # schema 6's time account
                 cur.execute(s._sql("UPDATE store_meta SET value = '4' WHERE key = 'csv_schema'"))
         with open_store(self.url) as s:
             self.assertIn("machine_id", s._columns_now("rows"))
+            self.assertIn("phase_samples_s", s._columns_now("rows"))
             self.assertEqual(s.query("SELECT value FROM store_meta WHERE key = 'csv_schema'")[0]["value"],
                              str(sqlschema.CSV_SCHEMA))
             self.assertEqual(self.count(s, "rows"), 3)

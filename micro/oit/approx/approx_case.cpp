@@ -91,6 +91,7 @@ class ApproxCase final : public OitCase {
         accum_(ctx.width(), ctx.height(), GL_RGBA32F),
         flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
         dump_(ctx.image_stem()) {
+    phases_ = ctx.phase_clock();
     settings_.technique = static_cast<ApproxTechnique>(technique(p.get("technique")).variant);
     settings_.nodes = static_cast<int>(p.get_int("nodes"));
     settings_.weight = p.get("wboit_weight");
@@ -109,6 +110,7 @@ class ApproxCase final : public OitCase {
     passes_.attach_opaque_depth(out_.framebuffer());
     passes_.attach_opaque_depth(accum_.framebuffer());
     // Analytic scenes: the truth from the scene's own planes (the capture keeps RGBA8 colours).
+    auto referencing = ctx.phase(Phase::Reference);
     if (passes_.effects() == std::vector<std::string>{"transparency"})  // the geometry knows no other effect
       geometry_ = geometric_reference(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full,
                                       near_far(view, passes_.mesh()), width_, height_, FragColour::RGBA8);
@@ -117,6 +119,7 @@ class ApproxCase final : public OitCase {
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
 
     capture_reference_fragments(p, ctx, vp);
+    referencing.end();
 
     Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
     if (settings_.unguarded) d.push_back({"APPROX_UNGUARDED", ""});
@@ -303,10 +306,14 @@ class ApproxCase final : public OitCase {
   Validation validate() override {
     Validation v;
     auto& m = v.metrics;
+    auto reading = PhaseClock::Scope(phases_, Phase::Readback);
     std::vector<float> rgb = rgb_of(out_.read_rgba32f());
+    reading.end();
     ListStats stats = list_stats(host_);
+    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
     auto ref = composite_reference(host_, backdrop_);
     ApproxModel model = approx_model(host_, backdrop_, settings_);
+    referencing.end();
     if (passes_.opaque()) m["hidden_fragments"] = std::to_string(hidden_);
     ApproxError err = approx_error(rgb, ref);
     m["total_fragments"] = std::to_string(stats.total_fragments);
@@ -378,6 +385,7 @@ class ApproxCase final : public OitCase {
   }
 
  private:
+  PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
   // The colour behind the transparent layers: one place, for the scene effects to replace.
   static std::string upper(std::string s) {
     for (auto& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));

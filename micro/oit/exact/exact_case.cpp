@@ -92,9 +92,13 @@ class ExactCase final : public OitCase {
 
     // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
     // (the next power of two at or above it, as the paper does) before anything is compiled.
-    passes_.draw_opaque();
-    overflow_rerenders_ += capture();
-    ListStats stats = list_stats(lists_->read_back());
+    ListStats stats;
+    {
+      const auto sizing = ctx.phase(Phase::Pool);
+      passes_.draw_opaque();
+      overflow_rerenders_ += capture();
+      stats = list_stats(lists_->read_back());
+    }
     long long forced = p.get_int("max_frags");
     max_frags_ =
         forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(stats.peak_depth));
@@ -259,9 +263,12 @@ class ExactCase final : public OitCase {
     auto& m = v.metrics;
     m["polygons"] = std::to_string(passes_.mesh().polygons());
     if (!passes_.transparency()) return validate_backdrop_only();
+    auto reading = ctx_.phase(Phase::Readback);
     HostLists host = native_ ? std::move(host_) : lists_->read_back();
-    ListStats stats = list_stats(host);
     const Backdrop backdrop = passes_.read_backdrop();
+    std::vector<float> rgba = native_ ? native_out_ : target_.read_rgba32f();
+    reading.end();
+    ListStats stats = list_stats(host);
     size_t truncated = 0;
     for (unsigned d : stats.depth) truncated += d > max_frags_;
     record_storage_metrics(m, stats, truncated);
@@ -280,7 +287,6 @@ class ExactCase final : public OitCase {
     if (truncated && !native_)
       problems.push_back(std::to_string(truncated) + " pixel(s) deeper than MAX_FRAGS=" + std::to_string(max_frags_) +
                          " were truncated");
-    std::vector<float> rgba = native_ ? native_out_ : target_.read_rgba32f();
     // With the opaque effect the reference does not trust the capture's depth test: every
     // transparent fragment captured again without it, hidden on the CPU by the opaque depth.
     HostLists reference_lists;
@@ -289,6 +295,7 @@ class ExactCase final : public OitCase {
         problems.push_back(std::to_string(behind) +
                            " captured fragment(s) lie at or behind the opaque depth (the capture's depth test failed)");
       size_t hidden = 0;
+      const auto referencing = ctx_.phase(Phase::Reference);
       reference_lists = visible_fragments(capture_unoccluded(), backdrop, hidden);
       m["hidden_fragments"] = std::to_string(hidden);
       ListStats ref_stats = list_stats(reference_lists);
@@ -298,7 +305,11 @@ class ExactCase final : public OitCase {
                            std::to_string(ref_stats.total_fragments));
     }
     const HostLists& ref_host = passes_.opaque() ? reference_lists : host;
-    auto ref = composite_reference(ref_host, backdrop);
+    std::vector<double> ref;
+    {
+      const auto referencing = ctx_.phase(Phase::Reference);
+      ref = composite_reference(ref_host, backdrop);
+    }
     auto err = compare_with_reference(rgba, ref, stats, backdrop, width_, tolerance_);
     m["max_abs_error"] = fmt(err.max_abs_error);
     m["rmse"] = fmt(err.rmse);
@@ -365,9 +376,11 @@ class ExactCase final : public OitCase {
   // the captured fragments).
   void check_against_planes(const std::vector<float>& rgba, const ListStats& stats,
                             std::map<std::string, std::string>& m, std::vector<std::string>& problems) {
+    auto referencing = ctx_.phase(Phase::Reference);
     auto geo = passes_.effects() == std::vector<std::string>{"transparency"}
                    ? geometric_reference(scene_, view_, detail_, near_far_, width_, height_, format_.colour)
                    : std::nullopt;
+    referencing.end();
     if (geo) {
       GeometricCheck g = check_against_geometry(*geo, rgba, stats.depth, scene_.background, tolerance_);
       m["truth_rmse"] = fmt(g.truth_rmse);

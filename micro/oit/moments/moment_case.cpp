@@ -85,6 +85,7 @@ CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
     set_view_proj(prog, v.view_proj);
     v.fx->bind_geometry(prog.get());
   }
+  const auto referencing = ctx.phase(Phase::Reference);  // the fragments the references composite
   v.fx->draw_opaque();
   v.backdrop = v.fx->read_backdrop();
   RenderTarget target(ctx.width(), ctx.height(), GL_R8);
@@ -111,6 +112,7 @@ class MboitCase final : public OitCase {
         accum_(ctx.width(), ctx.height(), GL_RGBA32F),
         flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
         dump_(ctx.image_stem()) {
+    phases_ = ctx.phase_clock();
     s_.kind = p.get("moment_kind") == "trigonometric" ? MomentKind::Trigonometric : MomentKind::Power;
     s_.moments = static_cast<int>(p.get_int("moments"));
     s_.bits = static_cast<int>(p.get_int("moment_bits"));
@@ -217,12 +219,16 @@ class MboitCase final : public OitCase {
   Validation validate() override {
     Validation v;
     auto& m = v.metrics;
+    auto reading = PhaseClock::Scope(phases_, Phase::Readback);
     std::vector<float> rgb = rgb_of(out_.read_rgba32f());
+    reading.end();
     const HostLists& host = view_.fragments;
     ListStats stats = list_stats(host);
+    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
     auto ref = composite_reference(host, view_.backdrop);
     size_t rebiased = 0;
     std::vector<double> model = mboit_model(host, view_.backdrop, s_, &rebiased);
+    referencing.end();
     ApproxError err = approx_error(rgb, ref);
     m["total_fragments"] = std::to_string(stats.total_fragments);
     m["peak_depth"] = std::to_string(stats.peak_depth);
@@ -270,6 +276,7 @@ class MboitCase final : public OitCase {
   }
 
  private:
+  PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
   // The colour behind the transparent layers, in one place (the opaque effect will replace it).
   void bind_moments() const {
     for (size_t i = 0; i < targets_.size(); ++i)

@@ -115,6 +115,7 @@ class PeelCase final : public OitCase {
         scene_(fx_.scene()),
         out_(ctx.width(), ctx.height(), GL_RGBA32F),
         dump_(ctx.image_stem()) {
+    phases_ = ctx.phase_clock();
     settings_.dual = technique(p.get("technique")).variant == static_cast<int>(PeelKind::Dual);
     settings_.depth_only = p.get("tie_rule") == "depth";
     unsigned max_layers = static_cast<unsigned>(p.get_int("max_layers"));
@@ -124,10 +125,11 @@ class PeelCase final : public OitCase {
 
     // The fragments, once: the exact reference and the model work on these. With the opaque
     // effect: every transparent fragment, hidden by the CPU against the opaque pass's depth.
-    fx_.draw_opaque();
-    backdrop_ = fx_.read_backdrop();
     size_t pixels = static_cast<size_t>(width_) * height_;
     {
+      const auto referencing = ctx.phase(Phase::Reference);
+      fx_.draw_opaque();
+      backdrop_ = fx_.read_backdrop();
       auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
       auto capture = build_capture_programs(
           *lists, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
@@ -274,15 +276,19 @@ class PeelCase final : public OitCase {
   Validation validate() override {
     Validation v;
     auto& m = v.metrics;
+    auto reading = PhaseClock::Scope(phases_, Phase::Readback);
     std::vector<float> rgba = out_.read_rgba32f();
+    reading.end();
     std::vector<float> rgb(rgba.size() / 4 * 3);
     for (size_t i = 0; i < rgba.size() / 4; ++i)
       for (int k = 0; k < 3; ++k) rgb[i * 3 + k] = rgba[i * 4 + k];
     ListStats stats = list_stats(host_);
+    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
     auto ref = composite_reference(host_, backdrop_);
     PeelSettings s = settings_;
     s.iterations = iterations_;
     auto model = peel_model(host_, backdrop_, s);
+    referencing.end();
     ApproxError err = approx_error(rgb, ref);
     size_t deepest = 0;  // the most layers in one pixel
     for (size_t px = 0; px < host_.heads.size(); ++px)
@@ -349,6 +355,7 @@ class PeelCase final : public OitCase {
   }
 
  private:
+  PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
   std::string where(size_t i, double got, double want) const {
     size_t px = i / 3;
     return "pixel (" + std::to_string(px % width_) + "," + std::to_string(px / width_) + ") channel " +

@@ -40,6 +40,7 @@ class StochasticCase final : public OitCase {
         total_(ctx.width(), ctx.height(), GL_R32F),
         flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
         dump_(ctx.image_stem()) {
+    phases_ = ctx.phase_clock();
     const int samples = static_cast<int>(p.get_int("samples_per_pixel"));
     // The most MSAA samples the driver renders RGBA32F and 32-bit float depth with that divide the
     // count; the rest comes from further passes (Enderton et al.: more passes, more samples).
@@ -161,11 +162,15 @@ class StochasticCase final : public OitCase {
   Validation validate() override {
     Validation v;
     auto& m = v.metrics;
+    auto reading = PhaseClock::Scope(phases_, Phase::Readback);
     std::vector<float> rgb = rgb_of(out_.read_rgba32f());
+    reading.end();
     const HostLists& host = view_.fragments;
     ListStats stats = list_stats(host);
+    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
     auto ref = composite_reference(host, view_.backdrop);
     std::vector<double> model = stochastic_model(coverage_fragments_, host, view_.backdrop, setup_);
+    referencing.end();
     ApproxError err = approx_error(rgb, ref);
     m["total_fragments"] = std::to_string(stats.total_fragments);
     m["peak_depth"] = std::to_string(stats.peak_depth);
@@ -207,6 +212,7 @@ class StochasticCase final : public OitCase {
   }
 
  private:
+  PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
   // The colour behind the transparent layers, in one place (the opaque effect will replace it).
 
   // Every fragment's MSAA coverage, once: counted, then recorded into a buffer of that size.

@@ -1,0 +1,52 @@
+"""A run's time account (CSV schema 6): where its cases' wall time went, from the case_wall_s and
+phase_*_s columns of their total rows (docs/measurement.md, "Where a run's time goes"). Rows of older
+schemas have no account and are left out."""
+from oitbench import results as oitres
+
+# The phases, as micro/core/phases.hpp names them.
+PHASES = ("scene", "compile", "pool", "warmup", "samples", "readback", "reference", "validate", "other")
+# The shares oitbench's closing line on stderr prints, and the phases each one sums.
+GROUPS = (("timed samples", ("samples",)), ("compile", ("compile",)), ("warm-up", ("warmup",)),
+          ("reference+validation", ("readback", "reference", "validate")), ("scene", ("scene", "pool")),
+          ("other", ("other",)))
+
+
+def column(phase):
+    return f"phase_{phase}_s"
+
+
+class Account:
+    """Seconds per group over some cases, and their wall time."""
+
+    def __init__(self):
+        self.cases = 0
+        self.wall = 0.0
+        self.groups = dict.fromkeys((name for name, _ in GROUPS), 0.0)
+
+    def add(self, row):
+        """Adds a total row's account; returns False (and adds nothing) for a row without one."""
+        if row.get("pass") != "total":
+            return False
+        wall = oitres.to_float(row.get("case_wall_s"))
+        if wall is None:
+            return False
+        for name, phases in GROUPS:
+            self.groups[name] += sum(oitres.to_float(row.get(column(p))) or 0.0 for p in phases)
+        self.wall += wall
+        self.cases += 1
+        return True
+
+    def share(self, name):
+        """The group's share of the wall time, in %."""
+        return 100.0 * self.groups[name] / self.wall if self.wall > 0 else 0.0
+
+
+def accounts(rows):
+    """{(preset, experiment): Account} over the rows that have an account, in first-seen order."""
+    out = {}
+    for r in rows:
+        key = (r.get("preset", ""), r.get("experiment", ""))
+        acc = out.get(key) or Account()
+        if acc.add(r):
+            out[key] = acc
+    return out

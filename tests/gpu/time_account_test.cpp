@@ -1,0 +1,86 @@
+// The time account end to end (core/phases.hpp, docs/measurement.md "Where a run's time goes"): every
+// case's total row has its wall time and phases, present, not negative and adding up to case_wall_s;
+// the cases' walls fit in the process's; the run's closing line gives the shares.
+#include <chrono>
+
+#include "core/phases.hpp"
+#include "support/test_support.hpp"
+
+namespace oitbench::test {
+
+namespace {
+
+double column(const Row& row, const std::string& name) {
+  auto it = row.find(name);
+  if (it == row.end() || it->second.empty()) {
+    ADD_FAILURE() << "column " << name << " missing or empty";
+    return -1;
+  }
+  return std::stod(it->second);
+}
+
+// Checks every total row's account; returns the sum of their case_wall_s.
+double check_accounts(const std::vector<Row>& rows) {
+  double walls = 0;
+  size_t totals = 0;
+  for (const auto& row : rows) {
+    if (row.at("pass") != "total") {
+      EXPECT_TRUE(row.at("case_wall_s").empty()) << "the account is on the total row only";
+      continue;
+    }
+    ++totals;
+    const double wall = column(row, "case_wall_s");
+    double sum = 0;
+    for (Phase p : kAllPhases) {
+      const double s = column(row, phase_column(p));
+      EXPECT_GE(s, 0) << phase_column(p);
+      sum += s;
+    }
+    EXPECT_GT(wall, 0);
+    EXPECT_NEAR(sum, wall, 0.05 * wall) << row.at("technique");
+    walls += wall;
+  }
+  EXPECT_GT(totals, 0u);
+  return walls;
+}
+
+}  // namespace
+
+TEST(TimeAccount, PhasesAddUpToEachCaseAndTheCasesFitInTheRun) {
+  auto out = temp_dir("account") / "a.csv";
+  const auto t0 = std::chrono::steady_clock::now();
+  auto r = run_oitbench({"run", "oit", "--set", "scene=planes", "--set", "technique=BASE-IS,MLAB", "--resolution",
+                         "64x64", "--reps", "3", "--out", out.string(), "--no-progress"});
+  const double process_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = read_csv_rows(out);
+  ASSERT_FALSE(rows.empty());
+  const double walls = check_accounts(rows);
+  EXPECT_LE(walls, process_s);
+  for (const auto& row : rows) {
+    if (row.at("pass") != "total") continue;
+    EXPECT_EQ(row.at("status"), "ok") << row.at("reason");
+    // The runner's phases and the cases' own stretches are all charged.
+    for (const char* c : {"phase_scene_s", "phase_samples_s", "phase_warmup_s", "phase_readback_s", "phase_reference_s",
+                          "phase_validate_s"})
+      EXPECT_GT(column(row, c), 0) << c << " of " << row.at("technique");
+    if (row.at("technique") == "BASE-IS") {
+      EXPECT_GT(column(row, "phase_pool_s"), 0);
+    }
+  }
+  EXPECT_NE(r.err.find("oitbench: time "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("timed samples "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("reference+validation "), std::string::npos) << r.err;
+}
+
+TEST(TimeAccount, AnIsolatedCaseBringsItsAccount) {
+  auto out = temp_dir("account-isolated") / "a.csv";
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "variant=unrolled", "--set", "size=4", "--isolate",
+                         "always", "--out", out.string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  check_accounts(read_csv_rows(out));
+  EXPECT_NE(r.err.find("oitbench: time "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("isolated cases' start "), std::string::npos) << r.err;
+}
+
+}  // namespace oitbench::test
