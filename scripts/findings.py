@@ -29,6 +29,7 @@ from oitbench import report  # noqa: E402  (collect: summary CSVs by header, NAM
 from oitbench import papers as tables  # noqa: E402  (load_paper, build_rows, fmt: the paper tables as the report shows them)
 from oitbench import cli  # noqa: E402
 from oitbench import techniques  # noqa: E402
+from oitbench import knowles  # noqa: E402  (Knowles 2014's speedups and table 1, computed once)
 
 DASH = tables.DASH
 EVEN_BAND = 1.10  # a time ratio within 1/1.10 .. 1.10 reads "about even": closer than this run can tell
@@ -37,7 +38,7 @@ RMSE_FLOOR = 1e-6  # exact techniques tie at this rmse, as on plot.py's error-ag
 TARGET_RESOLVE_VS_CPU = 2.0  # best shader resolve within this factor of CPU-NATIVE's
 TARGET_CAPTURE_RATE = 30e6  # fragments per second captured
 SCENE_ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house", "planes-deep"]
-PAPER_SCENE = tables.PAPER_SCENE  # our stand-ins for the papers' models
+PAPER_SCENE = knowles.PAPER_SCENE  # our stand-ins for the papers' models
 # The exact techniques that run as shaders (not CPU-NATIVE), as Knowles 2014 lists them.
 EXACT_SHADER = techniques.exact_in_paper_order(("BASE", "G", "CS", "BMA"))
 PER_PIXEL_ARRAY = ("MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT")
@@ -845,27 +846,8 @@ def section_targets(f):
 
 
 def speedups(f, name, pass_):
-    """{(scene, view): {technique: BASE-IS time / technique time}} of a preset's oit rows: the row's paired
-    `speedup` where its baseline is BASE-IS (schema 4: the two ran side by side in one group), else the
-    ratio of the two rows' medians."""
-    out, paired = {}, {}
-    for r in f.rows(name, "oit", pass_=pass_, capture="PPLL"):
-        view = (r["scene"], r["view"])
-        out.setdefault(view, {})[r["technique"]] = ms(r)
-        if r.get("speedup") and r.get("baseline") == "technique=BASE-IS":
-            paired.setdefault(view, {})[r["technique"]] = num(r, "speedup")
-    return {k: {t: paired.get(k, {}).get(t) or ratio(v["BASE-IS"], x) for t, x in v.items()}
-            for k, v in out.items() if "BASE-IS" in v}
-
-
-def paper_speedup(pairs, technique, scene, view, metric):
-    """The paper's table-3 speedup for our technique and view (CS-* stands for CUDA-*)."""
-    tech = tables.paper_name(technique)
-    pscene = PAPER_SCENE.get(scene, scene)
-    for k, r in pairs.items():
-        if k[0] == tech and k[2].lower() == pscene and k[3].lower() == view.lower() and k[4] == metric:
-            return r["paper_speedup"]
-    return None
+    """knowles.view_speedups of a preset's per-pixel-linked-list oit rows (paired where they carry it)."""
+    return knowles.view_speedups(f.rows(name, "oit", pass_=pass_, capture="PPLL"), pass_)
 
 
 def section_knowles2014(f):
@@ -874,7 +856,7 @@ def section_knowles2014(f):
              "The resolve sorts of Knowles 2014 (RBS), tables 1 and 3.", ""]
     if not f.run(name):
         return lines + missing(name)
-    pairs = f.paper_pairs(name, "knowles2014-3")
+    paper = knowles.Paper(f.paper_rows)
     rsp, tsp = speedups(f, name, "resolve"), speedups(f, name, "total")
     views = sorted(rsp, key=lambda k: (scene_key(k[0]), view_key(k[1])))
     techs = [t for t in EXACT_SHADER + ["CPU-NATIVE"] if t != "BASE-IS" and any(t in rsp[v] for v in views)]
@@ -884,14 +866,13 @@ def section_knowles2014(f):
               "speedup over BASE-IS (time of BASE-IS / time; paired per repetition where the rows carry it) per view, the paper's (GTX Titan, 1920x1080) in "
               "brackets; the engine grid stands in for the power plant, the house for the atrium, CS-* for the "
               "paper's CUDA-* rows.", ""]
-    for label, sp, metric in (("Resolve", rsp, "resolve_speedup_vs_BASE-IS"),
-                              ("Total", tsp, "total_speedup_vs_BASE-IS")):
+    for label, sp, metric in (("Resolve", rsp, "resolve"), ("Total", tsp, "total")):
         body = []
         for t in techs:
             row = [t]
             for v in views:
                 ours = sp.get(v, {}).get(t)
-                p = paper_speedup(pairs, t, v[0], v[1], metric)
+                p = paper.speedup(t, v[0], v[1], metric)
                 row.append(f_x(ours) + (f" ({f_paper(p)})" if p is not None else ""))
             body.append(row)
         lines += [f"{label} speedups:", ""]
@@ -900,8 +881,8 @@ def section_knowles2014(f):
     def ours(t, pred, sp=rsp):
         return [sp[v].get(t) for v in views if pred(v) and sp[v].get(t) is not None]
 
-    def theirs(t, pred, metric="resolve_speedup_vs_BASE-IS"):
-        return [p for p in (paper_speedup(pairs, t, v[0], v[1], metric) for v in views if pred(v)) if p is not None]
+    def theirs(t, pred, metric="resolve"):
+        return [p for p in (paper.speedup(t, v[0], v[1], metric) for v in views if pred(v)) if p is not None]
 
     rev = lambda v: v[1] == "rev"  # noqa: E731
     fwd = lambda v: v[1] == "fwd"  # noqa: E731
@@ -909,9 +890,9 @@ def section_knowles2014(f):
     every = lambda v: True  # noqa: E731
     for v in [v for v in views if rev(v)]:
         lines.append(f"- {v[0]} {v[1]}: BASE-RBS-L's resolve {f_x(rsp[v].get('BASE-RBS-L'))}x (paper "
-                     f"{f_paper(paper_speedup(pairs, 'BASE-RBS-L', v[0], v[1], 'resolve_speedup_vs_BASE-IS'))}x), "
+                     f"{f_paper(paper.speedup('BASE-RBS-L', v[0], v[1], 'resolve'))}x), "
                      f"BMA-RBS-L {f_x(rsp[v].get('BMA-RBS-L'))}x (paper "
-                     f"{f_paper(paper_speedup(pairs, 'BMA-RBS-L', v[0], v[1], 'resolve_speedup_vs_BASE-IS'))}x).")
+                     f"{f_paper(paper.speedup('BMA-RBS-L', v[0], v[1], 'resolve'))}x).")
     rbs_fwd = ours("BASE-RBS-L", fwd) + ours("BMA-RBS-L", fwd)
     lines.append(f"- On the sorted `fwd` views the RBS resolves (BASE-RBS-L, BMA-RBS-L) reach {span(rbs_fwd)}x "
                  f"(paper {span(theirs('BASE-RBS-L', fwd) + theirs('BMA-RBS-L', fwd), f_paper)}x): against "
@@ -932,32 +913,23 @@ def section_knowles2014(f):
             for v in others) + ")"
     lines.append(text + f"; {span(ours('CPU-NATIVE', rev))}x on the `rev` views, "
                  f"{span(ours('CPU-NATIVE', lambda v: not rev(v)))}x elsewhere.")
-    p_total = f.paper("knowles2014-rbs", "3", "BMA-RBS-L", "total_speedup_vs_BASE-IS", scene="planes", view="Rev")
-    p_res = f.paper("knowles2014-rbs", "3", "BMA-RBS-L", "resolve_speedup_vs_BASE-IS", scene="planes", view="Rev")
+    p_total = paper.speedup("BMA-RBS-L", "planes", "Rev", "total")
+    p_res = paper.speedup("BMA-RBS-L", "planes", "Rev", "resolve")
     if p_total is not None:
         lines.append(f"- The paper's planes Rev, BMA-RBS-L: total speedup {f_paper(p_total)}x, resolve "
                      f"{f_paper(p_res)}x.")
     lines.append("")
 
-    summary = f.paper_pairs(name, "knowles2014-1")
-    body, avg = [], {}
-    for t in techs:
-        r_, t_ = ours(t, every), ours(t, every, tsp)
-        if not r_ or not t_:
-            continue
-        avg[t] = {"average_total": statistics.mean(t_), "average_resolve": statistics.mean(r_),
-                  "best_total": max(t_), "best_resolve": max(r_)}
-        tech = tables.paper_name(t)
-        paper = [next((r["paper_speedup"] for k, r in summary.items() if k[0] == tech and
-                       k[4] == f"{m}_speedup_vs_BASE-IS"), None) for m in avg[t]]
-        body.append([t] + [f"{f_x(x)}x" for x in avg[t].values()] +
-                    [" / ".join(f_paper(p) for p in paper[:2]), " / ".join(f_paper(p) for p in paper[2:])])
+    body, avg = [], knowles.table1(rsp, {v: tsp[v] for v in views}, techs)
+    for t, figures in avg.items():
+        theirs1 = [paper.summary(t, m) for m in figures]
+        body.append([t] + [f"{f_x(x)}x" for x in figures.values()] +
+                    [" / ".join(f_paper(p) for p in theirs1[:2]), " / ".join(f_paper(p) for p in theirs1[2:])])
     lines += ["Table 1's layout: the mean and the best speedup over the views (ours: these views; the paper: "
               "its scenes).", ""]
     lines += table(["technique", "avg total", "avg resolve", "best total", "best resolve",
                     "paper avg total / resolve", "paper best total / resolve"], body)
-    goal = {m: f.paper("knowles2014-rbs", "1", "BMA-RBS-L", f"{m}_speedup_vs_BASE-IS")
-            for m in ("best_resolve", "average_resolve", "average_total")}
+    goal = {m: paper.summary("BMA-RBS-L", m) for m in ("best_resolve", "average_resolve", "average_total")}
     shader = {t: v for t, v in avg.items() if t != "CPU-NATIVE"}
     if shader and all(g is not None for g in goal.values()):
         parts = []

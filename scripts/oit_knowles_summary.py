@@ -7,34 +7,34 @@ PAPER_TABLES_DIR holds knowles2014_table1_summary.csv and knowles2014_table3_spe
 repository's results/published).
 """
 import argparse
-import statistics
 import sys
 from pathlib import Path
 
 from oitbench import cli
+from oitbench import knowles
 from oitbench import results as oitres
 from oitbench import techniques
-from oitbench.papers import PAPER_SCENE, paper_name
 
 ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house"]
 TECHNIQUES = techniques.exact_in_paper_order()  # the paper's order, from scripts/techniques.json
 
 
-def paper_table(path, key):
-    """{key(row): value} of one paper table, or {} when the file is not there."""
+def paper_table(path):
+    """The rows of one paper table, or [] when the file is not there."""
     if not path.exists():
-        return {}
+        return []
     header, rows = oitres.read_csv(str(path))
-    missing = [c for c in ("technique", "metric", "value") if c not in header]
+    missing = [c for c in ("source", "table", "scene", "view", "technique", "metric", "value") if c not in header]
     if missing:
         raise oitres.ResultsError(f"{path}:1: not a paper table (no column {', '.join(missing)})")
-    table = {}
     for line, r in enumerate(rows, 2):
-        value = oitres.to_float(r["value"])
-        if value is None:
+        if oitres.to_float(r["value"]) is None:
             raise oitres.ResultsError(f"{path}:{line}: value '{r['value']}' is not a number")
-        table[key(r)] = value
-    return table
+    return rows
+
+
+def number(x):
+    return float("nan") if x is None else x
 
 
 def main(argv=None):
@@ -53,28 +53,26 @@ def main(argv=None):
         Path(__file__).resolve().parent.parent / "results" / "published"
     if not paper_dir.is_dir():
         raise oitres.ResultsError(f"{paper_dir}: no such folder (PAPER_TABLES_DIR)")
-    t3 = paper_table(paper_dir / "knowles2014_table3_speedups.csv",
-                     lambda r: (r.get("scene"), r.get("view", "").lower(), r["technique"], r["metric"].split("_")[0]))
-    t1 = paper_table(paper_dir / "knowles2014_table1_summary.csv", lambda r: (r["technique"], r["metric"]))
+    published = knowles.Paper(paper_table(paper_dir / "knowles2014_table3_speedups.csv") +
+                          paper_table(paper_dir / "knowles2014_table1_summary.csv"))
     res = {(r["scene"], r["view"], r["technique"], r["pass"]): r for r in rows}
     views = sorted({(r["scene"], r["view"]) for r in rows},
                    key=lambda sv: (ORDER.index(sv[0]) if sv[0] in ORDER else 9, sv[1]))
-    speed = {}  # (technique, resolve|total) -> [speedups over views]
+    # The ratio of the medians (no paired speedups), every row in the per-view table, the valid ones in table 1.
+    rsp, tsp = (knowles.view_speedups(rows, p, paired=False) for p in ("resolve", "total"))
+    valid = {}  # (scene, view) -> the techniques whose resolve was valid
     print("| scene | view | technique | resolve ms | total ms | resolve speedup | total speedup | paper resolve / total (Titan) | valid | notes |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for scene, view in views:
-        base = {p: res.get((scene, view, "BASE-IS", p)) for p in ("resolve", "total")}
         for t in TECHNIQUES:
             r, tot = res.get((scene, view, t, "resolve")), res.get((scene, view, t, "total"))
             if not r or not tot:
                 continue
-            sr = float(base["resolve"]["median_ms"]) / float(r["median_ms"]) if base["resolve"] else float("nan")
-            st = float(base["total"]["median_ms"]) / float(tot["median_ms"]) if base["total"] else float("nan")
+            sr = number(rsp.get((scene, view), {}).get(t))
+            st = number(tsp.get((scene, view), {}).get(t))
             if r["valid"] == "1":
-                speed.setdefault((t, "resolve"), []).append(sr)
-                speed.setdefault((t, "total"), []).append(st)
-            key = (PAPER_SCENE.get(scene, scene), view.lower(), paper_name(t))
-            pr, pt = t3.get(key + ("resolve",)), t3.get(key + ("total",))
+                valid.setdefault((scene, view), set()).add(t)
+            pr, pt = published.speedup(t, scene, view, "resolve"), published.speedup(t, scene, view, "total")
             paper = f"{pr}x / {pt}x" if pr else "-"
             notes = tot.get("bma_auto_choice", "") or ""
             print(f"| {scene} | {view} | {t} | {float(r['median_ms']):.1f} | {float(tot['median_ms']):.1f} | {sr:.2f}x | {st:.2f}x "
@@ -84,14 +82,12 @@ def main(argv=None):
     print()
     print("| technique | avg total | avg resolve | best total | best resolve | paper avg total | paper avg resolve | paper best total | paper best resolve |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for t in TECHNIQUES:
-        tv, rv = speed.get((t, "total")), speed.get((t, "resolve"))
-        if not tv:
-            continue
-        p = [t1.get((paper_name(t), m + "_speedup_vs_BASE-IS")) for m in
-             ("average_total", "average_resolve", "best_total", "best_resolve")]
-        ps = " | ".join(f"{x}x" if x is not None else "-" for x in p)
-        print(f"| {t} | {statistics.mean(tv):.2f}x | {statistics.mean(rv):.2f}x | {max(tv):.2f}x | {max(rv):.2f}x | {ps} |")
+    def kept(speedups):
+        return {v: {t: s for t, s in speedups.get(v, {}).items() if t in ts} for v, ts in valid.items()}
+
+    for t, figures in knowles.table1(kept(rsp), kept(tsp), TECHNIQUES).items():
+        ps = " | ".join(f"{x}x" if x is not None else "-" for x in (published.summary(t, m) for m in figures))
+        print(f"| {t} | " + " | ".join(f"{x:.2f}x" for x in figures.values()) + f" | {ps} |")
     print()
     print("| scene | view | fragments | peak depth | MAX_FRAGS | capture fragments/s | node_pool_bytes |")
     print("|---|---|---|---|---|---|---|")

@@ -1,9 +1,11 @@
-"""The papers' tables beside ours: the library behind scripts/tables.py (and report.py, findings.py)."""
+"""The papers' tables beside ours: the library behind scripts/tables.py (and report.py, findings.py).
+Knowles 2014's speedups and table-1 figures are computed in knowles.py."""
 import glob
 import os
 import re
 import statistics
 
+from oitbench import knowles
 from oitbench import results as oitres
 
 DASH = "\u2014"
@@ -61,15 +63,6 @@ _NOT_IS = ("ims", "merge", "rbs", "rbsl", "rbsg", "register")
 def _alloc_sort(alloc, sort_words, exclude=()):
     alts = [f"{alloc} {s}" for s in sort_words] + [f"{alloc}{s}" for s in sort_words if " " not in s]
     return T("oit", *alts, exclude=exclude, size="max_frags")
-
-
-# Our stand-ins for the papers' models (scenes/engine-grid.json, scenes/house.json): same view names.
-PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
-
-
-def paper_name(technique):
-    """Knowles 2014's name for our technique: our CS-* (compute shaders) stand in for its CUDA-*."""
-    return "CUDA-" + technique[3:] if technique.startswith("CS-") else technique
 
 
 TECHNIQUES = {
@@ -430,10 +423,7 @@ def summary_rows(table, rows, ours):
             mine, _ = ours.lookup(tech, size, scene or "all", metric_base(r["metric"]), view)
             if base and mine:
                 speedups.append(base / mine)
-        if speedups:
-            ours_value = max(speedups) if r["metric"].startswith("best") else statistics.mean(speedups)
-        else:
-            ours_value = None
+        ours_value = knowles.summarize(speedups, r["metric"])
         out.append({"table": table.name, "scene": r["scene"], "view": "", "size": "", "technique": tech,
                     "metric": r["metric"], "paper": None, "unit": r["unit"],
                     "paper_speedup": oitres.to_float(r["value"]), "ours_ms": None, "ours_speedup": ours_value,
