@@ -3,7 +3,8 @@
 
     scripts/store.py [--store URL] ingest FILE_OR_FOLDER...   # summary and --raw CSVs; idempotent
     scripts/store.py [--store URL] runs [--tag K=V] [--driver D] [--renderer R] [--commit SHA] [--since DATE]
-    scripts/store.py history [RUN FILTER] [--experiment E] [--case PATTERN] [--order date|commit|driver] [-o F.png]
+    scripts/store.py history [RUN FILTER] [--experiment E] [--case PATTERN] [--order date|commit|driver]
+                     [--repo DIR] [-o F.png]    # commit: the git commit graph's order (DIR: this repository)
     scripts/store.py compare --a-tag K=V ... --b-tag K=V ... (or --a-driver, --b-commit, ...) [--experiment E]
     scripts/store.py fleet -o fleet.html
     scripts/store.py bencher [RUN FILTER] -o bmf.json       # the latest matching run, Bencher's metric format
@@ -83,7 +84,13 @@ def run_filter(args, prefix=""):
 
 
 def cmd_history(store, args):
-    series = store_history.history(store, run_filter(args), args.experiment, args.case, args.order, args.alpha)
+    if args.repo is not None and not os.path.isdir(args.repo):
+        raise StoreError(f"--repo {args.repo}: no such folder")
+    notes = []
+    series = store_history.history(store, run_filter(args), args.experiment, args.case, args.order, args.alpha,
+                                   repo=args.repo, notes=notes)
+    for n in notes:
+        print(f"note: {n}", file=sys.stderr)
     if not series:
         print("store.py history: no ok row of any run matches the filter (see: store.py runs)", file=sys.stderr)
         return 1
@@ -187,6 +194,9 @@ def main(argv=None):
     p.add_argument("--case", help="case key pattern, SQL LIKE (%% any text): occupancy/unrolled/total/%%size=32")
     p.add_argument("--order", choices=store_history.ORDERS, default="date")
     p.add_argument("--alpha", type=cli.number(float, low=0.0, high=1.0, low_open=True, high_open=True), default=0.01, help="the change points' significance (default 0.01)")
+    p.add_argument("--repo", default=store_history.default_repo(),
+                   help="the git repository whose commit graph --order commit follows (default: the one these "
+                   "scripts are in; where it does not know a run's commit, history orders by date and says so)")
     p.add_argument("-o", "--output", help="figure (PNG or SVG)")
     p.add_argument("-v", "--verbose", action="store_true", help="every run's median and interval")
     p.set_defaults(func=cmd_history)

@@ -47,7 +47,7 @@ def order_ci(samples):
 
 
 def write_trial(folder, name, trial, step, runs=20, samples=15, rng=None, extra_cases=(), driver="llvmpipe",
-                machine="00000000000000aa"):
+                machine="00000000000000aa", shas=None):
     """One CSV (and its raw file) holding `runs` runs of occupancy's unrolled size=32 case (draws 64, or 70
     from run 11 on with `step`): a between-run factor (lognormal, 1.5%) and per-sample noise (lognormal, 6%,
     15 samples): ~2.4% per run's median, as the A/B pairs of identical code in results/ab-llvmpipe/identical
@@ -69,7 +69,7 @@ def write_trial(folder, name, trial, step, runs=20, samples=15, rng=None, extra_
                        width="800", height="600", reps=str(samples), median_ms=f"{med:.6g}",
                        mad_ms=f"{sorted(abs(v - med) for v in values)[samples // 2]:.6g}",
                        ci_lo_ms=f"{lo:.6g}", ci_hi_ms=f"{hi:.6g}", samples=str(samples), timestamp_utc=stamp,
-                       git_sha=f"c{i:03d}", hostname="vm", machine_id=machine, run_id=run_id,
+                       git_sha=shas[i] if shas else f"c{i:03d}", hostname="vm", machine_id=machine, run_id=run_id,
                        tags=f"trial={name}", size=case, draws="64", parameters="size;draws")
             row["pass"] = "total"
             summary.append(row)
@@ -151,6 +151,57 @@ class Backend:
                                "--tag", "trial=nosuch"], capture_output=True, text=True, timeout=300)
         self.assertEqual(proc.returncode, 1)
         self.assertIn("no ok row of any run matches", proc.stderr)
+
+    def test_order_commit_follows_the_commit_graph(self):
+        """--order commit: by git ancestry (a -dirty build at its commit's place), not by the date each
+        commit was first run; a commit the repository does not know orders everything by date, with a note."""
+        repo = os.path.join(self.dir, "repo")
+        os.makedirs(repo)
+
+        def git(*args):
+            return subprocess.run(["git", "-C", repo, "-c", "user.name=t", "-c", "user.email=t@example.org"] +
+                                  list(args), check=True, capture_output=True, text=True).stdout.strip()
+        git("init", "-q")
+        shas = []
+        for i in range(3):
+            git("commit", "-q", "--allow-empty", "-m", f"commit {i}")
+            shas.append(git("rev-parse", "--short=12", "HEAD"))
+        run_order = [shas[2], shas[0] + "-dirty", shas[1]]  # a bisection's order: newest first
+        case = "occupancy/unrolled/total/800x600/draws=64;size=32"
+        with open_store(self.url) as s:
+            for p in write_trial(self.dir, "graph", 7, False, runs=3, shas=run_order):
+                s.ingest(p)
+            for p in write_trial(self.dir, "stranger", 8, False, runs=3, shas=[shas[1], "0123456789ab", shas[0]]):
+                s.ingest(p)
+
+            def shas_of(trial, order, repo_dir, notes=None):
+                (series,) = store_history.history(s, queries.RunFilter([f"trial={trial}"]), "occupancy", case,
+                                                  order=order, repo=repo_dir, notes=notes)
+                return [r["git_sha"] for r in series.rows]
+            notes = []
+            self.assertEqual(shas_of("graph", "commit", repo, notes), [shas[0] + "-dirty", shas[1], shas[2]])
+            self.assertEqual(notes, [])
+            self.assertEqual(shas_of("graph", "date", repo), run_order)
+            for trial, repo_dir, unknown in (("stranger", repo, "0123456789ab"), ("graph", self.dir, shas[0]),
+                                             ("graph", None, shas[0])):
+                notes = []
+                self.assertEqual(shas_of(trial, "commit", repo_dir, notes),
+                                 run_order if trial == "graph" else [shas[1], "0123456789ab", shas[0]])
+                self.assertEqual(len(notes), 1)
+                self.assertIn("ordered by the date", notes[0])
+                self.assertIn(unknown, notes[0])
+        proc = subprocess.run([PYTHON, os.path.join(SCRIPTS, "store.py"), "--store", self.url, "history",
+                               "--tag", "trial=graph", "--order", "commit", "--repo", repo, "-v"],
+                              capture_output=True, text=True, timeout=300)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertNotIn("note:", proc.stderr)
+        self.assertLess(proc.stdout.index(shas[0]), proc.stdout.index(shas[1]))
+        self.assertLess(proc.stdout.index(shas[1]), proc.stdout.index(shas[2]))
+        proc = subprocess.run([PYTHON, os.path.join(SCRIPTS, "store.py"), "--store", self.url, "history",
+                               "--tag", "trial=stranger", "--order", "commit", "--repo", repo],
+                              capture_output=True, text=True, timeout=300)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("note: ordered by the date each commit was first run", proc.stderr)
 
     def test_compare_two_halves(self):
         with open_store(self.url) as s:
