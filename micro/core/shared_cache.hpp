@@ -3,8 +3,9 @@
 // (the engine grid's 12.76 M triangles take ~13 s to generate and upload on llvmpipe, and a paired
 // baseline is prepared once per interleaved group). Owned by the runner, so nothing outlives the GL
 // context; reached through CaseContext::shared(). Entries are keyed by text (the builder names everything
-// the value depends on) and by type; the `capacity` most recently used stay, and a case keeps what it got
-// alive after that (shared_ptr), so memory is bounded by the live cases plus the capacity.
+// the value depends on) and by type; of each type the `capacity` most recently used stay (a type of small
+// values may keep more: get()'s `keep`), and a case keeps what it got alive after that (shared_ptr), so
+// memory is bounded by the live cases plus the capacity per type.
 #include <cstddef>
 #include <functional>
 #include <list>
@@ -20,10 +21,14 @@ class SharedCache {
   SharedCache(const SharedCache&) = delete;
   SharedCache& operator=(const SharedCache&) = delete;
 
-  // The value stored under `key`, or make()'s, stored (a make() that throws stores nothing).
+  // The value stored under `key`, or make()'s, stored (a make() that throws stores nothing). `keep`: the
+  // most entries of type T kept (0: the cache's capacity), for small values many cases share (a pool's
+  // size) beside big ones (a scene's meshes); each type's entries are evicted only by its own kind.
   template <class T>
-  std::shared_ptr<const T> get(const std::string& key, const std::function<std::shared_ptr<const T>()>& make) {
-    const std::string full = std::string(typeid(T).name()) + '\n' + key;
+  std::shared_ptr<const T> get(const std::string& key, const std::function<std::shared_ptr<const T>()>& make,
+                               size_t keep = 0) {
+    const std::string type = std::string(typeid(T).name()) + '\n';
+    const std::string full = type + key;
     for (auto it = entries_.begin(); it != entries_.end(); ++it)
       if (it->key == full) {
         entries_.splice(entries_.begin(), entries_, it);
@@ -34,7 +39,12 @@ class SharedCache {
     ++misses_;
     if (capacity_ == 0) return made;
     entries_.push_front({full, made});
-    while (entries_.size() > capacity_) entries_.pop_back();
+    size_t of_type = 0;
+    for (auto it = entries_.begin(); it != entries_.end();)
+      if (it->key.compare(0, type.size(), type) == 0 && ++of_type > (keep ? keep : capacity_))
+        it = entries_.erase(it);
+      else
+        ++it;
     return made;
   }
   unsigned hits() const { return hits_; }

@@ -195,7 +195,9 @@ class OitExperiment final : public Experiment {
          "next power of two when max_frags=0)"},
         {"truncated_pixels", T::Integer, "", "pixels deeper than max_frags_used (their deepest fragments dropped)"},
         {"node_pool", T::Integer, "", "fragment slots allocated"},
-        {"overflow_rerenders", T::Integer, "", "captures redone because the node pool overflowed"},
+        {"overflow_rerenders", T::Integer, "",
+         "captures redone because the node pool overflowed (the exact techniques: 0 where the pool started at the "
+         "size an earlier case of the run found for the same fragments)"},
         {"bma_intervals", T::Text, "", "BMA: pixels per depth interval, TOP:COUNT;..."},
         {"node_pool_bytes", T::Integer, "bytes", "fragment storage allocated (nodes, next pointers, heads or offsets)"},
         {"node_buffers", T::Integer, "",

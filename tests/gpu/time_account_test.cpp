@@ -2,6 +2,7 @@
 // case's total row has its wall time and phases, present, not negative and adding up to case_wall_s;
 // the cases' walls fit in the process's; the run's closing line gives the shares.
 #include <chrono>
+#include <map>
 
 #include "core/phases.hpp"
 #include "support/test_support.hpp"
@@ -81,6 +82,39 @@ TEST(TimeAccount, AnIsolatedCaseBringsItsAccount) {
   check_accounts(read_csv_rows(out));
   EXPECT_NE(r.err.find("oitbench: time "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("isolated cases' start "), std::string::npos) << r.err;
+}
+
+}  // namespace oitbench::test
+
+namespace oitbench::test {
+
+// The exact techniques' cases of a run that capture the same fragments share one pool sizing
+// (exact_case.cpp: size_pool); every check still sees each case's own capture: a case that loses
+// fragments (fault=lose-fragment, in the sizing's key) is still invalid beside valid ones of the same view.
+TEST(TimeAccount, ASharedPoolSizingKeepsEveryCheck) {
+  auto out = temp_dir("account-shared") / "a.csv";
+  auto r = run_oitbench({"run", "oit", "--set", "scene=planes", "--set", "view=fwd,rev", "--set",
+                         "technique=BASE-IS,CPU-NATIVE", "--set", "fault=none,lose-fragment", "--resolution", "64x64",
+                         "--reps", "1", "--warmup", "0", "--out", out.string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::map<std::string, std::string> fragments;  // view -> total_fragments of its fault-free cases
+  size_t totals = 0;
+  for (const auto& row : read_csv_rows(out)) {
+    if (row.at("pass") != "total") continue;
+    ++totals;
+    const std::string what = row.at("view") + " " + row.at("technique") + " " + row.at("fault");
+    if (row.at("fault") == "lose-fragment") {
+      EXPECT_EQ(row.at("status"), "invalid") << what;
+      EXPECT_NE(row.at("reason").find("fragments lost"), std::string::npos) << what << ": " << row.at("reason");
+      continue;
+    }
+    EXPECT_EQ(row.at("status"), "ok") << what << ": " << row.at("reason");
+    auto [it, first] = fragments.emplace(row.at("view"), row.at("total_fragments"));
+    if (!first) {
+      EXPECT_EQ(it->second, row.at("total_fragments")) << what;
+    }
+  }
+  EXPECT_EQ(totals, 8u);
 }
 
 }  // namespace oitbench::test

@@ -83,5 +83,20 @@ TEST(Reference, ABrokenListIsReported) {
   EXPECT_FALSE(list_stats(h).error.empty());
 }
 
+TEST(Reference, ListDepthsAreListStatsDepthsWithoutTheSort) {
+  auto h = lists({{0.5f, rgba8(1, 2, 3, 4)}, {0.6f, rgba8(1, 2, 3, 4)}, {0.7f, rgba8(1, 2, 3, 4)}});
+  ListDepths d = list_depths(h);
+  EXPECT_EQ(d.depth, list_stats(h).depth);
+  EXPECT_EQ(d.depth, (std::vector<unsigned>{3, 0}));
+  EXPECT_EQ(d.peak_depth, 3u);
+  EXPECT_EQ(d.total_fragments, 3u);
+  for (unsigned broken : {0u, 9u}) {  // a cycle, a node outside the pool: 0, as list_stats counts it
+    h.next[2] = broken;
+    d = list_depths(h);
+    EXPECT_EQ(d.depth, list_stats(h).depth);
+    EXPECT_EQ(d.peak_depth, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace oitbench::oit

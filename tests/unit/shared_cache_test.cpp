@@ -24,11 +24,27 @@ TEST(SharedCache, BuildsOncePerKeyAndTypeAndKeepsTheMostRecent) {
   // The same key for another type is another entry.
   EXPECT_EQ(*cache.get<std::string>("a", [] { return std::make_shared<const std::string>("s"); }), "s");
   EXPECT_EQ(cache.misses(), 2u);
-  // Capacity 2: "a" (int) was used before "a" (string); adding "b" evicts it, and it is built again.
+  // Capacity 2 per type: the string does not count against the ints; "b" makes two ints, "c" a third,
+  // which evicts the least recently used, "a", so it is built again.
   cache.get<int>("b", make(2));
-  EXPECT_EQ(*cache.get<int>("a", make(3)), 3);
-  EXPECT_EQ(built, 3);
+  EXPECT_EQ(*cache.get<int>("a", make(98)), 1);
+  cache.get<int>("c", make(4));
+  EXPECT_EQ(*cache.get<int>("b", make(3)), 3);
+  EXPECT_EQ(built, 4);
+  EXPECT_EQ(*cache.get<std::string>("a", [] { return std::make_shared<const std::string>("t"); }), "s");
   EXPECT_EQ(*a, 1);  // what a case holds outlives its eviction
+}
+
+TEST(SharedCache, ATypeMayKeepMoreThanTheCapacity) {
+  SharedCache cache(1);
+  for (int i = 0; i < 5; ++i)
+    cache.get<int>(
+        std::to_string(i), [i] { return std::make_shared<const int>(i); }, 5);
+  for (int i = 0; i < 5; ++i)
+    EXPECT_EQ(*cache.get<int>(
+                  std::to_string(i), [] { return std::make_shared<const int>(-1); }, 5),
+              i);
+  EXPECT_EQ(cache.misses(), 5u);
 }
 
 TEST(SharedCache, AFailedBuildStoresNothingAndCapacityZeroSharesNothing) {

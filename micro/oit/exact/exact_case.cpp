@@ -12,6 +12,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include "core/stats.hpp"
 #include "gl/render_target.hpp"
@@ -46,6 +47,8 @@ double tolerance_of(FragColour c) {
   return c == FragColour::RGBA8 ? 2.0 / 255.0 : c == FragColour::RGBA16F ? 1e-3 : 1e-4;
 }
 constexpr int kFirstInterval = 8;  // BMA intervals: 1-8, 9-16, 17-32, ... (Knowles 2014, section 4)
+// Pool sizings a run keeps for its cases to share (each a few numbers): more than the views of a preset.
+constexpr size_t kSharedPoolSizings = 64;
 
 unsigned next_pow2(unsigned v) {
   unsigned p = 1;
@@ -84,24 +87,12 @@ class ExactCase final : public OitCase {
     view_ = passes_.view();
     detail_ = p.get("detail") == "small" ? Detail::Small : Detail::Full;
     near_far_ = near_far(passes_.view(), passes_.mesh());
-    size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
-    long long init = p.get_int("initial_pool");
-    lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx,
-                                   init > 0 ? static_cast<size_t>(init) : pixels * 4, bma_, format_);
-    build_capture();
-
-    // One capture now: it sizes the pool and gives the view's peak depth, which sets MAX_FRAGS
-    // (the next power of two at or above it, as the paper does) before anything is compiled.
-    ListStats stats;
-    {
-      const auto sizing = ctx.phase(Phase::Pool);
-      passes_.draw_opaque();
-      overflow_rerenders_ += capture();
-      stats = list_stats(lists_->read_back());
-    }
+    // The view's peak depth sets MAX_FRAGS (the next power of two at or above it, as the paper does)
+    // before anything is compiled.
+    const std::shared_ptr<const PoolSizing> sizing = size_pool(p, ctx);
     long long forced = p.get_int("max_frags");
     max_frags_ =
-        forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(stats.peak_depth));
+        forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(sizing->peak_depth));
     if (native_) return;
     if (compute_) {
       auto [gx, gy] = parse_group(p.get("cs_group"));
@@ -119,8 +110,7 @@ class ExactCase final : public OitCase {
       for (unsigned top = kFirstInterval; top <= max_frags_; top *= 2) interval_tops_.push_back(top);
       // Compile the intervals this view uses now (compile time is not frame time); others on demand.
       std::vector<bool> used(interval_tops_.size(), false);
-      for (unsigned d : stats.depth)
-        if (d > 0) used[interval_of(d)] = true;
+      for (unsigned d : sizing->depths) used[interval_of(d)] = true;
       interval_programs_.resize(interval_tops_.size());
       if (auto_) calibrate_bma_auto();
       for (size_t i = 0; i < used.size(); ++i)
@@ -434,6 +424,65 @@ class ExactCase final : public OitCase {
 
   // The technique's capture: with the opaque effect, against the opaque depth (early fragment
   // tests in capture.frag: a hidden fragment is never stored).
+  // What sizing the pool found: the fragments captured, the peak depth and the depths that occur.
+  struct PoolSizing {
+    size_t fragments = 0;
+    unsigned peak_depth = 0;
+    std::vector<unsigned> depths;  // the distinct non-zero pixel depths, ascending
+  };
+
+  // Makes the fragment storage and sizes its pool: one capture (with its overflow re-renders) and its
+  // read-back, before anything is compiled. The run's cases that capture the same fragments (the same
+  // size, the same parameters but the resolve's: pool_key) share what it found: only the first pays the
+  // capture, and the others' pools start at the size it needed (their captures then overflow no more, so
+  // their overflow_rerenders is 0). A pool set by initial_pool, and BMA-AUTO, whose calibration resolves
+  // the captured lists, always capture here. Validation reads their own capture back, as before.
+  std::shared_ptr<const PoolSizing> size_pool(const ParamSet& p, const CaseContext& ctx) {
+    const auto sizing_phase = ctx.phase(Phase::Pool);
+    const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
+    const long long init = p.get_int("initial_pool");
+    auto make_storage = [&](size_t pool) {
+      lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pool, bma_, format_);
+      build_capture();
+    };
+    auto measure = [&] {
+      make_storage(init > 0 ? static_cast<size_t>(init) : pixels * 4);
+      passes_.draw_opaque();
+      overflow_rerenders_ += capture();
+      const ListDepths d = list_depths(lists_->read_back());
+      auto s = std::make_shared<PoolSizing>();
+      s->fragments = lists_->fragments();
+      s->peak_depth = d.peak_depth;
+      std::vector<bool> seen(d.peak_depth + 1, false);
+      for (unsigned depth : d.depth) seen[depth] = true;
+      for (unsigned depth = 1; depth <= d.peak_depth; ++depth)
+        if (seen[depth]) s->depths.push_back(depth);
+      return std::shared_ptr<const PoolSizing>(std::move(s));
+    };
+    if (init > 0 || auto_ || !ctx.shared()) return measure();
+    bool measured = false;
+    auto s = ctx.shared()->get<PoolSizing>(
+        pool_key(p, ctx),
+        [&] {
+          measured = true;
+          return measure();
+        },
+        kSharedPoolSizings);
+    if (!measured) make_storage(std::max(pixels * 4, s->fragments + s->fragments / 32 + 1));
+    return s;
+  }
+
+  // Everything the captured fragments depend on: the size, whether the pool keeps counts, and every
+  // parameter but those only the resolve reads (a parameter added later is in the key until listed here).
+  std::string pool_key(const ParamSet& p, const CaseContext& ctx) const {
+    constexpr std::array<std::string_view, 7> kResolveOnly = {"technique", "block",       "block_sort",    "cs_group",
+                                                              "max_frags", "order_check", "bma_auto_cache"};
+    std::string key = std::to_string(ctx.width()) + "x" + std::to_string(ctx.height()) + (bma_ ? " counts" : "");
+    for (const auto& [k, v] : p.values())
+      if (std::find(kResolveOnly.begin(), kResolveOnly.end(), k) == kResolveOnly.end()) key += " " + k + "=" + v;
+    return key;
+  }
+
   void build_capture() {
     capture_defines_ = lists_->defines();
     capture_ = build_capture_programs(

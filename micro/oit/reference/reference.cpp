@@ -59,6 +59,21 @@ ListStats list_stats(const HostLists& l) {
   return s;
 }
 
+ListDepths list_depths(const HostLists& l) {
+  ListDepths d;
+  d.depth.assign(l.heads.size(), 0);
+  for (size_t p = 0; p < l.heads.size(); ++p) {
+    size_t n = 0;
+    unsigned i = l.heads[p];
+    for (; i != kListEnd && i < l.nodes.size() && n <= l.nodes.size(); i = l.next[i]) ++n;
+    if (i != kListEnd) continue;  // broken: counted as list_stats counts it (0)
+    d.depth[p] = static_cast<unsigned>(n);
+    d.peak_depth = std::max(d.peak_depth, d.depth[p]);
+    d.total_fragments += n;
+  }
+  return d;
+}
+
 HostLists visible_fragments(const HostLists& l, const Backdrop& b, size_t& hidden) {
   HostLists out;
   out.width = l.width;

@@ -42,6 +42,14 @@ struct ListStats {
   std::string error;  // a broken list (cycle, index outside the pool), else empty
 };
 ListStats list_stats(const HostLists& lists);
+// Only each pixel's list length and the peak (what sizing a pool needs), without list_stats' sort: a
+// broken list (a cycle, a node outside the pool) counts 0, as in list_stats, which names it.
+struct ListDepths {
+  std::vector<unsigned> depth;  // per pixel
+  unsigned peak_depth = 0;
+  size_t total_fragments = 0;
+};
+ListDepths list_depths(const HostLists& lists);
 
 // One RGB per pixel (3 doubles), the backdrop where no fragment landed.
 std::vector<double> composite_reference(const HostLists& lists, const Backdrop& backdrop);
