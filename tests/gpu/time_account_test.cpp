@@ -117,4 +117,41 @@ TEST(TimeAccount, ASharedPoolSizingKeepsEveryCheck) {
   EXPECT_EQ(totals, 8u);
 }
 
+// The approximate techniques' cases of a run that see the same fragments share one reference view
+// (approx_case.cpp: reference_view); each still compares its own image: a wrong result (in the key) is
+// still invalid beside valid cases of the same view, and a case's error is what it is in a run of its own.
+TEST(TimeAccount, ASharedReferenceKeepsEveryCheck) {
+  const auto dir = temp_dir("account-reference");
+  const std::vector<std::string> common = {"--set",        "scene=planes", "--set", "view=rev", "--resolution",
+                                           "64x64",        "--reps",       "1",     "--warmup", "0",
+                                           "--no-progress"};
+  auto run = [&](const std::string& name, std::vector<std::string> sets) {
+    std::vector<std::string> args = {"run", "oit", "--out", (dir / name).string()};
+    args.insert(args.end(), sets.begin(), sets.end());
+    args.insert(args.end(), common.begin(), common.end());
+    auto r = run_oitbench(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return read_csv_rows(dir / name);
+  };
+  const auto rows = run("both.csv", {"--set", "technique=WBOIT,MLAB", "--set", "fault=none,wrong-result"});
+  const auto alone = run("alone.csv", {"--set", "technique=MLAB"});
+  ASSERT_FALSE(alone.empty());
+  size_t totals = 0;
+  for (const auto& row : rows) {
+    if (row.at("pass") != "total") continue;
+    ++totals;
+    const std::string what = row.at("technique") + " " + row.at("fault");
+    if (row.at("fault") == "wrong-result") {
+      EXPECT_EQ(row.at("status"), "invalid") << what;
+      continue;
+    }
+    EXPECT_EQ(row.at("status"), "ok") << what << ": " << row.at("reason");
+    if (row.at("technique") == "MLAB") {
+      EXPECT_EQ(row.at("rmse"), alone.back().at("rmse"));
+      EXPECT_EQ(row.at("total_fragments"), alone.back().at("total_fragments"));
+    }
+  }
+  EXPECT_EQ(totals, 4u);
+}
+
 }  // namespace oitbench::test

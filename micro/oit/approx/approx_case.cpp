@@ -118,7 +118,7 @@ class ApproxCase final : public OitCase {
     glm::mat4 pm = vp * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
 
-    capture_reference_fragments(p, ctx, vp);
+    ref_ = reference_view(p, ctx, vp);
     referencing.end();
 
     Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
@@ -171,30 +171,57 @@ class ApproxCase final : public OitCase {
   }
 
   // The fragments, once, for the exact reference and the technique's CPU model.
-  void capture_reference_fragments(const ParamSet& p, CaseContext& ctx, const glm::mat4& vp) {
-    // The fragments, once: the exact reference and every model work on these. With the opaque
-    // effect: every transparent fragment, hidden by the CPU against the opaque pass's depth (the
-    // reference does not trust the technique's own depth test).
-    passes_.draw_opaque();
-    backdrop_ = passes_.read_backdrop();
-    size_t pixels = static_cast<size_t>(width_) * height_;
-    lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
-    auto capture = build_capture_programs(
-        *lists_, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
-        passes_.geometry_defines());
-    for (const auto& prog : capture) {
-      set_view_proj(prog, vp);
-      passes_.bind_geometry(prog.get());
-    }
-    out_.bind();
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    lists_->capture(ids(capture), [&] { passes_.transparent().draw(); });
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    host_ = visible_fragments(lists_->read_back(), backdrop_, hidden_);
-    lists_.reset();  // its pool is not needed for timing
+  // The reference side of the view: every transparent fragment (with the opaque effect, those the CPU's
+  // depth test keeps: the reference does not trust the technique's own depth test), the backdrop, their
+  // statistics and exact composite. The exact reference and every model work on these. The run's
+  // approximate cases that see the same fragments (reference_key) share one, so only the first pays
+  // the capture, the read-back and the composite; each case still compares its own image with it.
+  struct ReferenceView {
+    Backdrop backdrop;
+    size_t hidden = 0;
+    HostLists host;
+    ListStats stats;
+    std::vector<double> composite;
+  };
+
+  std::shared_ptr<const ReferenceView> reference_view(const ParamSet& p, CaseContext& ctx, const glm::mat4& vp) {
+    auto make = [&] {
+      auto r = std::make_shared<ReferenceView>();
+      passes_.draw_opaque();
+      r->backdrop = passes_.read_backdrop();
+      size_t pixels = static_cast<size_t>(width_) * height_;
+      auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
+      auto capture = build_capture_programs(
+          *lists, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+          passes_.geometry_defines());
+      for (const auto& prog : capture) {
+        set_view_proj(prog, vp);
+        passes_.bind_geometry(prog.get());
+      }
+      out_.bind();
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_CULL_FACE);
+      glDisable(GL_BLEND);
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      lists->capture(ids(capture), [&] { passes_.transparent().draw(); });
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      r->host = visible_fragments(lists->read_back(), r->backdrop, r->hidden);
+      r->stats = list_stats(r->host);
+      r->composite = composite_reference(r->host, r->backdrop);
+      return std::shared_ptr<const ReferenceView>(std::move(r));
+    };
+    if (!ctx.shared()) return make();
+    // One kept beside the live cases' own: a view's fragments are big (a pool of them per pixel).
+    return ctx.shared()->get<ReferenceView>(reference_key(p, ctx), make, 1);
+  }
+
+  // Everything the reference fragments depend on: the size, and every parameter but the technique and
+  // the technique parameters (Technique::params), except `capture`, the storage they are captured in.
+  static std::string reference_key(const ParamSet& p, const CaseContext& ctx) {
+    std::string key = std::to_string(ctx.width()) + "x" + std::to_string(ctx.height());
+    for (const auto& [k, v] : p.values())
+      if (k == "capture" || (k != "technique" && techniques_reading(k).empty())) key += " " + k + "=" + v;
+    return key;
   }
 
   GLuint opaque_texture() const override { return passes_.opaque_texture(); }
@@ -309,12 +336,12 @@ class ApproxCase final : public OitCase {
     auto reading = PhaseClock::Scope(phases_, Phase::Readback);
     std::vector<float> rgb = rgb_of(out_.read_rgba32f());
     reading.end();
-    ListStats stats = list_stats(host_);
+    const ListStats& stats = ref_->stats;
+    const std::vector<double>& ref = ref_->composite;
     auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    auto ref = composite_reference(host_, backdrop_);
-    ApproxModel model = approx_model(host_, backdrop_, settings_);
+    ApproxModel model = approx_model(ref_->host, ref_->backdrop, settings_);
     referencing.end();
-    if (passes_.opaque()) m["hidden_fragments"] = std::to_string(hidden_);
+    if (passes_.opaque()) m["hidden_fragments"] = std::to_string(ref_->hidden);
     ApproxError err = approx_error(rgb, ref);
     m["total_fragments"] = std::to_string(stats.total_fragments);
     m["peak_depth"] = std::to_string(stats.peak_depth);
@@ -407,10 +434,7 @@ class ApproxCase final : public OitCase {
   std::optional<GeometricReference> geometry_;
   RenderTarget out_, accum_;
   FullscreenTriangle quad_;
-  Backdrop backdrop_;
-  size_t hidden_ = 0;
-  std::unique_ptr<FragmentStorage> lists_;
-  HostLists host_;
+  std::shared_ptr<const ReferenceView> ref_;
   ApproxSettings settings_;
   bool arrays_ = false, at_family_ = false, ht_ = false;
   double bytes_per_pixel_ = 0;
