@@ -19,7 +19,9 @@
 #   bruell2018-approx  the preset at 1920x1080                                 [48x48]
 #   report         scripts/report.py OUT -o OUT/report
 # Each step's rows are in OUT/presets/STEP.csv (and STEP_raw.csv), with the preset column naming the
-# paper preset, so scripts/tables.py puts them beside the papers' tables.
+# paper preset, so scripts/tables.py puts them beside the papers' tables. At the end, the time account
+# ("gpu-run.sh: time: ..."): each step's shares (timed samples, compile, warm-up, reference+validation,
+# scene, other), all steps', and what their cases leave of the script's own wall time.
 #
 # OITBENCH=path/to/oitbench runs that binary (default: build/oitbench beside this script's folder, or
 # bin/oitbench in an unpacked bundle). Exit codes: 0 every step ran (rows may still be invalid: the
@@ -127,6 +129,17 @@ for f in "$out"/presets/*.csv; do
     $p == "total" { n[$s]++ }
     END { line = ""; for (k in n) line = line " " n[k] " " k; print "gpu-run.sh: " name ":" line }' "$f"
 done
+# Where the time went (docs/measurement.md "Where a run's time goes"): per step and in all, and what the
+# steps' cases leave of the script's own time.
+csvs=()
+for f in "$out"/presets/*.csv; do
+  case "$f" in *_raw.csv) ;; *) [ -f "$f" ] && csvs+=("$f") ;; esac
+done
+if [ -n "$PYTHON" ] && [ -d "$here/oitbench" ] && [ ${#csvs[@]} -gt 0 ]; then
+  PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" "$PYTHON" -c 'import sys
+from oitbench import timeaccount
+print("\n".join(timeaccount.step_lines(sys.argv[2:], float(sys.argv[1]))))' "$SECONDS" "${csvs[@]}"
+fi
 [ $stopped -eq 1 ] && { echo "gpu-run.sh: interrupted; finished rows are in $out/presets" >&2; exit 130; }
 if [ ${#failed[@]} -gt 0 ]; then
   echo "gpu-run.sh: failed: ${failed[*]}" >&2

@@ -1,6 +1,8 @@
 """A run's time account (CSV schema 6): where its cases' wall time went, from the case_wall_s and
 phase_*_s columns of their total rows (docs/measurement.md, "Where a run's time goes"). Rows of older
 schemas have no account and are left out."""
+import os
+
 from oitbench import results as oitres
 
 # The phases, as micro/core/phases.hpp names them.
@@ -50,3 +52,39 @@ def accounts(rows):
         if acc.add(r):
             out[key] = acc
     return out
+
+
+def shares_text(acc, wall=None):
+    """'timed samples 3.1 s (25%), compile ...' of an Account, in % of `wall` (default: its own)."""
+    wall = acc.wall if wall is None else wall
+    return ", ".join(f"{name} {acc.groups[name]:.1f} s ({100.0 * acc.groups[name] / wall if wall > 0 else 0:.0f}%)"
+                     for name, _ in GROUPS)
+
+
+def step_lines(paths, script_s=None, prefix="gpu-run.sh: time"):
+    """The time account of a run of several steps (scripts/gpu-run.sh: one summary CSV per step): one line
+    per step, one for all, and where `script_s` (the script's own wall time) is given, what the steps'
+    cases leave of it (each oitbench's start, info, the report). Files without an account are skipped."""
+    lines, everything = [], Account()
+    for path in paths:
+        acc = Account()
+        try:
+            _, rows = oitres.read_csv(path)
+        except oitres.ResultsError as e:
+            lines.append(f"{prefix}: {e}")
+            continue
+        for r in rows:
+            if acc.add(r):
+                everything.add(r)
+        if acc.cases:
+            name = os.path.splitext(os.path.basename(path))[0]
+            lines.append(f"{prefix}: {name}: {acc.cases} cases, {acc.wall:.1f} s: {shares_text(acc)}")
+    if everything.cases:
+        lines.append(f"{prefix}: all steps: {everything.cases} cases, {everything.wall:.1f} s: {shares_text(everything)}")
+        if script_s:
+            rest = script_s - everything.wall
+            lines.append(f"{prefix}: the script's {script_s:.0f} s: the cases {everything.wall:.1f} s "
+                         f"({100.0 * everything.wall / script_s:.0f}%; timed samples "
+                         f"{100.0 * everything.groups['timed samples'] / script_s:.0f}%), the rest {rest:.1f} s "
+                         "(each oitbench's start and writing, info, device, the report)")
+    return lines

@@ -24,6 +24,8 @@ class GpuRunSmoke(unittest.TestCase):
                               env=env, capture_output=True, text=True, timeout=900)
         self.assertEqual(proc.returncode, 0, proc.stdout[-3000:] + proc.stderr[-3000:])
         self.assertIn("gpu-run.sh: done", proc.stdout)
+        self.assertIn("gpu-run.sh: time: all steps: ", proc.stdout)  # the time account
+        self.assertIn("gpu-run.sh: time: knowles2014: ", proc.stdout)
         for step in STEPS:
             path = os.path.join(out, "presets", step + ".csv")
             self.assertTrue(os.path.exists(path), step)
