@@ -4,12 +4,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 
 #include "app/commands.hpp"
 #include "app/number_option.hpp"
 #include "backends/drivers.hpp"
 #include "core/csv.hpp"
 #include "core/files.hpp"
+#include "core/memory_budget.hpp"
 #include "core/outcomes.hpp"
 #include "core/presets.hpp"
 #include "core/provenance.hpp"
@@ -34,7 +36,8 @@ struct CliState {
   RunCommand run;
   double target_ci_pct = 0;
   bool no_interleave = false, no_progress = false, no_program_cache = false;
-  std::string shard;  // --shard I/N or auto
+  std::string shard;         // --shard I/N or auto
+  std::string memory_limit;  // --memory-limit SIZE as given
   RenderCommand render;
   viewer::ViewerOptions view;
 };
@@ -225,6 +228,20 @@ void declare_run_execution(CLI::App& run, CliState& s) {
   run.add_option("--isolate", o.isolate,
                  "Run cases in child processes under the watchdog: auto (hang-prone experiments), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
+  run.add_option("--memory-limit", s.memory_limit,
+                 "The most memory one case may hold: CPU memory, and on a software renderer its GPU buffers too "
+                 "(SIZE: 8G, 512M, ...; default: MemAvailable and this process's RLIMIT_AS/RLIMIT_DATA). A case "
+                 "whose estimate is larger is unsupported, decided before it allocates")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              parse_byte_size(text);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+          },
+          "SIZE"));
   run.add_option("--timeout", o.timeout_s, "Watchdog: seconds a case may take before it is killed (status timeout)")
       ->check(number({0, kWeekSeconds, true, false, false, "seconds"}));
   run.add_flag("--no-progress", s.no_progress, "No progress line on stderr");
@@ -305,6 +322,7 @@ int execute_run(const CLI::App& run, CliState& s) {
   o.interleave = !s.no_interleave;
   o.program_cache = !s.no_program_cache;
   o.progress = !s.no_progress;
+  if (!s.memory_limit.empty()) o.memory_limit = parse_byte_size(s.memory_limit);
   if (!s.shard.empty()) {
     o.shard = parse_shard(s.shard);
     if (!o.shard.source.empty())

@@ -8,9 +8,11 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "backends/backend.hpp"
+#include "core/memory_budget.hpp"
 #include "core/params.hpp"
 #include "core/phases.hpp"
 #include "core/schema.hpp"
@@ -70,6 +72,10 @@ class CaseContext {
   // sizing, read-back, the reference. A no-op where the run keeps no account (the viewer, tests).
   PhaseClock::Scope phase(Phase p) const { return PhaseClock::Scope(phases_, p); }
   PhaseClock* phase_clock() const { return phases_; }  // for a case that keeps it (null: no account)
+  // What the case may allocate (core/memory_budget.hpp): checked from its counts before it allocates.
+  // Unknown limits (the default) check nothing.
+  const MemoryLimits& memory() const { return memory_; }
+  void set_memory(MemoryLimits limits) { memory_ = std::move(limits); }
   // Compiles with the experiment's defines plus the fault define (OITBENCH_FAULT_WRONG_RESULT, ...);
   // its time is the account's compile phase.
   gl::Program build(const std::vector<ShaderStage>& stages, Defines defines) const;
@@ -84,6 +90,7 @@ class CaseContext {
   bool gpu_clock_;
   SharedCache* shared_;
   PhaseClock* phases_;
+  MemoryLimits memory_{};
 };
 
 class CaseInstance {

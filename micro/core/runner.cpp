@@ -243,6 +243,8 @@ class Runner {
     try {
       CaseContext cctx(*shaders_, gl_, res, rec.params.get("fault"), static_cast<unsigned>(rec.params.get_int("seed")),
                        opt_.image_stem, use_gpu_timer_, shared_.get(), &clock_);
+      cctx.set_memory(current_memory_limits(gl_.is_software_renderer(), gl_.has_extension("GL_NVX_gpu_memory_info"),
+                                            gl_.has_extension("GL_ATI_meminfo"), opt_.memory_limit));
       glFinish();
       auto t0 = Clock::now();
       auto before = shaders_->cache_counts();
@@ -658,6 +660,7 @@ class Runner {
     if (!opt_.interleave) args.push_back("--no-interleave");
     if (!opt_.program_cache) args.push_back("--no-program-cache");
     if (opt_.sync_passes) args.push_back("--sync-passes");
+    if (opt_.memory_limit) args.insert(args.end(), {"--memory-limit", std::to_string(*opt_.memory_limit)});
     // Only what the case uses: the child's grid gives the rest their defaults and marks them unused.
     for (const auto& [k, v] : params.used_values()) args.insert(args.end(), {"--set", k + "=" + v});
     const auto started = Clock::now();

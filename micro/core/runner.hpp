@@ -74,6 +74,8 @@ struct RunOptions {
   std::string image_stem;       // render: where a case writes its images (CaseContext::image_stem)
   // When the run began (the options are made first thing): its time account's start and wall time.
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  // --memory-limit: replaces the CPU limit a case's memory estimate is held against (core/memory_budget.hpp)
+  std::optional<unsigned long long> memory_limit;
 };
 
 // The size a request runs at: the command line's --resolution/--reps/--warmup first; then, on a hardware

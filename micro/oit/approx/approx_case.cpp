@@ -17,6 +17,7 @@
 #include "oit/reference/image_compare.hpp"
 #include "oit/reference/image_io.hpp"
 #include "oit/reference/reference.hpp"
+#include "oit/scene/coverage_estimate.hpp"
 #include "oit/scene/gpu_mesh.hpp"
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
@@ -190,7 +191,8 @@ class ApproxCase final : public OitCase {
       passes_.draw_opaque();
       r->backdrop = passes_.read_backdrop();
       size_t pixels = static_cast<size_t>(width_) * height_;
-      auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
+      auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
+                                         capture_budget(passes_.mesh(), vp, ctx, passes_.opaque() ? 2 : 1));
       auto capture = build_capture_programs(
           *lists, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
           passes_.geometry_defines());

@@ -25,6 +25,7 @@ FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool wi
 }
 
 void FragmentLists::allocate(size_t pool) {
+  check_pool(pool);  // refused (Unsupported) before anything that large is allocated
   // Never fewer chunks than the programs were built for (defines()); more only past the last one.
   size_t chunks = std::max(nodes_.chunks(), chunks_for(pool));
   nodes_ = NodePool(pool, format_.colour, "linked-list node pool", chunks);

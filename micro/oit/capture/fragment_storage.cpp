@@ -181,10 +181,52 @@ void ChunkedTexels::read(size_t n, void* out) const {
   }
 }
 
+MemoryNeed fragment_memory(CaptureStorage kind, FragFormat format, bool with_counts, unsigned long long pool,
+                           size_t pixels, int host_copies) {
+  const bool lists = kind == CaptureStorage::PPLL;
+  const size_t node = frag_node_bytes(format.colour) + (lists ? 4 : 0);  // PPLL: the next pointer
+  const size_t gpu_pixel = lists ? 4 * (with_counts ? 2 : 1) : 4 * 3;    // heads (counts); counts, offsets, scan
+  // Read back: nodes (8) and next (4), wide colours (16), the read's depth (4) and rgba16f's colours (8).
+  const size_t host = format.colour == FragColour::RGBA8     ? 12
+                      : format.colour == FragColour::RGBA16F ? 12 + 16 + 4 + 8
+                                                             : 12 + 16 + 4;
+  MemoryNeed need;
+  need.gpu_bytes = pool * node + pixels * gpu_pixel;
+  need.gpu_what = std::string(lists ? "the linked lists" : "the packed arrays") + " (a pool of " + format_count(pool) +
+                  " fragments x " + std::to_string(node) + " B)";
+  const unsigned long long copies = static_cast<unsigned long long>(std::max(host_copies, 1));
+  need.cpu_bytes = copies * pool * host + pixels * kValidationBytesPerPixel;
+  need.cpu_what = "the read-back and the references (" + (copies > 1 ? std::to_string(copies) + " x " : "") +
+                  format_count(pool) + " fragments x " + std::to_string(host) + " B, " + format_count(pixels) +
+                  " pixels x " + std::to_string(kValidationBytesPerPixel) + " B)";
+  return need;
+}
+
 std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,
-                                                       bool with_counts, FragFormat format) {
-  if (kind == CaptureStorage::PPPA) return std::make_unique<PackedArrays>(ctx, initial_pool, format);
-  return std::make_unique<FragmentLists>(ctx.width(), ctx.height(), initial_pool, with_counts, format);
+                                                       bool with_counts, FragFormat format, FragmentBudget budget) {
+  const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
+  const MemoryLimits limits = ctx.memory();
+  auto guard = [=](size_t pool) {
+    require_memory(fragment_memory(kind, format, with_counts, pool, pixels, budget.host_copies), limits,
+                   "a pool of " + format_count(pool) + " fragments");
+  };
+  // The scene's estimate first: nothing is allocated or drawn for a case that cannot be held.
+  if (budget.expected > 0) {
+    require_memory(
+        fragment_memory(kind, format, with_counts, budget.expected + budget.expected / 8, pixels, budget.host_copies),
+        limits, "~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives):");
+    if (budget.expected >= kListEnd)
+      throw Unsupported("~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives): " +
+                        "the capture indexes fragments with 32 bits (at most " + format_count(kListEnd - 1) + ")");
+  }
+  guard(initial_pool);
+  std::unique_ptr<FragmentStorage> storage;
+  if (kind == CaptureStorage::PPPA)
+    storage = std::make_unique<PackedArrays>(ctx, initial_pool, format);
+  else
+    storage = std::make_unique<FragmentLists>(ctx.width(), ctx.height(), initial_pool, with_counts, format);
+  storage->set_pool_guard(guard);
+  return storage;
 }
 
 std::vector<gl::Program> build_capture_programs(const FragmentStorage& storage, const CaseContext& ctx,

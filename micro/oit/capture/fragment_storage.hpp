@@ -10,8 +10,10 @@
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "core/memory_budget.hpp"
 #include "core/registry.hpp"
 #include "gl/gl_objects.hpp"
 #include "gl/shader.hpp"
@@ -122,6 +124,9 @@ CaptureStorage parse_capture_storage(const std::string& name);  // throws std::i
 class FragmentStorage {
  public:
   virtual ~FragmentStorage() = default;
+  // Called with a pool size before it is allocated; throws Unsupported when that pool would not fit
+  // the case's memory (make_fragment_storage sets it from CaseContext::memory()).
+  void set_pool_guard(std::function<void(size_t pool)> guard) { guard_ = std::move(guard); }
   virtual CaptureStorage kind() const = 0;
   // For every shader that includes fragment_storage.glsl: selects this layout.
   virtual Defines defines() const = 0;
@@ -138,11 +143,40 @@ class FragmentStorage {
   virtual size_t buffers() const = 0;    // texel buffers each node array is split into (ChunkedTexels)
   virtual bool with_counts() const = 0;  // per-pixel counts exist (fragCounts, image unit 3)
   virtual HostLists read_back() const = 0;
+
+ protected:
+  void check_pool(size_t pool) const {
+    if (guard_) guard_(pool);
+  }
+
+ private:
+  std::function<void(size_t)> guard_;
+};
+
+// What a pool of `pool` fragments costs (core/memory_budget.hpp): on the GPU the storage (nodes,
+// PPLL's next pointers, the per-pixel heads, counts and offsets); on the CPU the read-back (HostLists
+// and the read's temporaries) `host_copies` times, plus the per-pixel buffers of the CPU and geometric
+// references and the image comparison (kValidationBytesPerPixel). The CPU reference itself streams:
+// it composites one pixel's fragments at a time.
+inline constexpr size_t kValidationBytesPerPixel = 160;
+MemoryNeed fragment_memory(CaptureStorage kind, FragFormat format, bool with_counts, unsigned long long pool,
+                           size_t pixels, int host_copies = 1);
+
+// What a case tells make_fragment_storage about the fragments to come: `expected`, the fragments its
+// scene makes (estimate_fragments in oit/scene/coverage_estimate.hpp; 0: unknown), checked against the
+// memory limits before anything is allocated; `host_copies`, the read-backs its validation holds at once
+// (the opaque effect's unoccluded capture: 3).
+struct FragmentBudget {
+  unsigned long long expected = 0;
+  int host_copies = 1;
 };
 
 // `with_counts`: PPLL also counts each pixel's fragments (BMA); PPPA always does.
+// Throws Unsupported, naming the estimate and the limit, when the expected fragments (or the initial
+// pool) would not fit the case's memory; later growth of the pool is checked the same way.
 std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,
-                                                       bool with_counts, FragFormat format = {});
+                                                       bool with_counts, FragFormat format = {},
+                                                       FragmentBudget budget = {});
 
 // The capture programs of `storage` from `stages` (a fragment shader that calls store_fragment()),
 // with `extra` defines (an effect's, e.g. OpacityShadowMap::defines()).

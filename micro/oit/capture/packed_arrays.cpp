@@ -20,6 +20,7 @@ PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool, FragForm
 }
 
 void PackedArrays::allocate(size_t pool) {
+  check_pool(pool);  // refused (Unsupported) before anything that large is allocated
   // Never fewer chunks than the programs were built for (defines()); more only past the last one.
   nodes_ = NodePool(pool, format_.colour, "packed per-pixel arrays", std::max(nodes_.chunks(), chunks_for(pool)));
   pool_ = pool;

@@ -29,6 +29,7 @@
 #include "oit/resolve/bma_auto.hpp"
 #include "oit/resolve/compute_resolve.hpp"
 #include "oit/resolve/resolve_sort.hpp"
+#include "oit/scene/coverage_estimate.hpp"
 #include "oit/scene/gpu_mesh.hpp"
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
@@ -441,8 +442,11 @@ class ExactCase final : public OitCase {
     const auto sizing_phase = ctx.phase(Phase::Pool);
     const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
     const long long init = p.get_int("initial_pool");
+    // The opaque effect's validation holds three read-backs at once: the capture, the unoccluded
+    // capture and its visible fragments.
     auto make_storage = [&](size_t pool) {
-      lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pool, bma_, format_);
+      lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pool, bma_, format_,
+                                     capture_budget(passes_.mesh(), view_proj_, ctx, passes_.opaque() ? 3 : 1));
       build_capture();
     };
     auto measure = [&] {

@@ -11,6 +11,7 @@
 #include "oit/reference/image_compare.hpp"
 #include "oit/reference/image_io.hpp"
 #include "oit/reference/reference.hpp"
+#include "oit/scene/coverage_estimate.hpp"
 #include "shaders/moments/bindings.h"
 
 namespace oitbench::oit {
@@ -77,7 +78,8 @@ CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
   hi = std::clamp(hi * 1.001f, lo * 1.001f, v.near_far.y);
   v.depth_range = {lo, hi};
   size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
-  auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
+  auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
+                                     capture_budget(mesh, v.view_proj, ctx, v.fx->opaque() ? 2 : 1));
   auto capture = build_capture_programs(
       *lists, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
       v.fx->geometry_defines());

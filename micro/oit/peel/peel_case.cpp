@@ -13,6 +13,7 @@
 #include "oit/reference/image_compare.hpp"
 #include "oit/reference/image_io.hpp"
 #include "oit/reference/reference.hpp"
+#include "oit/scene/coverage_estimate.hpp"
 #include "oit/scene/gpu_mesh.hpp"
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
@@ -130,7 +131,8 @@ class PeelCase final : public OitCase {
       const auto referencing = ctx.phase(Phase::Reference);
       fx_.draw_opaque();
       backdrop_ = fx_.read_backdrop();
-      auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false);
+      auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
+                                         capture_budget(fx_.mesh(), vp, ctx, fx_.opaque() ? 2 : 1));
       auto capture = build_capture_programs(
           *lists, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
           fx_.geometry_defines());

@@ -1,0 +1,68 @@
+// Memory decided before it is used (issue 27, docs/measurement.md#memory-decided-before-it-is-used):
+// a case whose fragments cannot be held is `unsupported` in seconds with its estimate and the limit,
+// not an `error` row saying std::bad_alloc after minutes; and the same check lets a case that fits run.
+// The runs are bounded by run_oitbench's timeout: a refusal that took minutes fails as exit 124.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+
+#include "support/test_support.hpp"
+
+namespace oitbench {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace test;
+
+// A size in a reason: "104 GiB", "16.0 MiB".
+const std::regex kSize(R"([0-9.]+ (B|KiB|MiB|GiB|TiB|PiB))");
+
+TEST(MemoryLimit, TheDeepCaseAt2048IsRefusedWithItsSize) {
+  auto dir = temp_dir("memory-deep");
+  const fs::path csv = dir / "deep.csv";
+  // BASE-IS on linked lists and CPU-NATIVE on packed arrays: 4.6 G fragments each.
+  auto r = run_oitbench({"run", "oit", "--set", "scene=planes-deep", "--set", "view=fwd", "--set",
+                         "technique=BASE-IS,CPU-NATIVE", "--set", "capture=PPLL,PPPA", "--resolution", "2048x2048",
+                         "--reps", "1", "--out", csv.string(), "--no-progress"},
+                        120);
+  ASSERT_EQ(r.exit_code, 3) << r.err;  // nothing could run: every case unsupported (docs/usage.md's exit table)
+  auto rows = read_csv_rows(csv);
+  ASSERT_EQ(rows.size(), 4u);
+  for (auto& row : rows) {
+    EXPECT_EQ(row["status"], "unsupported") << row["reason"];
+    EXPECT_NE(row["reason"].find("4.61 G fragments"), std::string::npos) << row["reason"];
+    EXPECT_NE(row["reason"].find("limit"), std::string::npos) << row["reason"];
+    EXPECT_TRUE(std::regex_search(row["reason"], kSize)) << row["reason"];
+  }
+}
+
+// The check can fail both ways: a small case refused under a small --memory-limit runs (ok) without it.
+TEST(MemoryLimit, TheLimitOptionDecidesASmallCase) {
+  auto dir = temp_dir("memory-small");
+  auto run = [&](const std::string& name, const std::vector<std::string>& extra) {
+    const fs::path csv = dir / (name + ".csv");
+    std::vector<std::string> args = {"run",          "oit",      "--set",  "scene=planes",
+                                     "--set",        "view=fwd", "--set",  "technique=BASE-IS",
+                                     "--resolution", "64x64",    "--reps", "1",
+                                     "--warmup",     "0",        "--out",  csv.string(),
+                                     "--no-progress"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    auto r = run_oitbench(args, 300);
+    auto rows = read_csv_rows(csv);  // one row per pass (one for a case refused before it ran): the total's
+    EXPECT_FALSE(rows.empty()) << r.err;
+    return std::make_pair(r.exit_code, rows.empty() ? Row{} : rows.back());
+  };
+  auto [refused_exit, refused] = run("refused", {"--memory-limit", "4M"});
+  EXPECT_EQ(refused_exit, 3);
+  EXPECT_EQ(refused["status"], "unsupported");
+  EXPECT_NE(refused["reason"].find("limit 4.00 MiB (--memory-limit)"), std::string::npos) << refused["reason"];
+  EXPECT_TRUE(std::regex_search(refused["reason"], kSize)) << refused["reason"];
+  auto [ran_exit, ran] = run("ran", {"--memory-limit", "1G"});
+  EXPECT_EQ(ran_exit, 0);
+  EXPECT_EQ(ran["pass"], "total");
+  EXPECT_EQ(ran["status"], "ok") << ran["reason"];
+}
+
+}  // namespace
+}  // namespace oitbench
