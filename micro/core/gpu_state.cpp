@@ -2,9 +2,11 @@
 
 #include <dlfcn.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 
 namespace oitbench {
 
@@ -19,6 +21,9 @@ namespace oitbench {
 //   nvmlReturn_t nvmlDeviceGetTemperature(nvmlDevice_t device, nvmlTemperatureSensors_t sensorType,
 //                                         unsigned int *temp);                                          // deg C
 //   nvmlReturn_t nvmlDeviceGetPowerUsage(nvmlDevice_t device, unsigned int *power);                   // mW
+// and, where the library has them (the device's identity; empty otherwise):
+//   nvmlReturn_t nvmlDeviceGetVbiosVersion(nvmlDevice_t device, char *version, unsigned int length);
+//   nvmlReturn_t nvmlDeviceGetPciInfo_v3(nvmlDevice_t device, nvmlPciInfo_t *pci);
 // nvmlReturn_t and the two enums are C enums (int); nvmlDevice_t is an opaque pointer.
 namespace {
 using NvmlReturn = int;
@@ -28,6 +33,36 @@ constexpr int kNvmlClockSm = 1, kNvmlClockMem = 2;  // nvmlClockType_t: NVML_CLO
 constexpr int kNvmlTemperatureGpu = 0;              // nvmlTemperatureSensors_t: NVML_TEMPERATURE_GPU
 constexpr unsigned kNameBuffer = 96;                // NVML_DEVICE_NAME_V2_BUFFER_SIZE
 constexpr unsigned kVersionBuffer = 80;             // NVML_SYSTEM_DRIVER_VERSION_BUFFER_SIZE
+// nvmlPciInfo_t as nvml.h lays it out; pciDeviceId is the device ID in the high 16 bits, the vendor's below.
+struct NvmlPciInfo {
+  char bus_id_legacy[16];
+  unsigned domain, bus, device, pci_device_id, pci_subsystem_id;
+  char bus_id[32];
+};
+
+// "10de:2335": a PCI vendor and device ID as lspci -n writes them.
+std::string pci_id_text(unsigned vendor, unsigned device) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%04x:%04x", vendor & 0xffffu, device & 0xffffu);
+  return buf;
+}
+
+// The first line of a sysfs file, without its newline; empty where it cannot be read.
+std::string first_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  if (!in || !std::getline(in, line)) return "";
+  while (!line.empty() && (line.back() == '\n' || line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+// A PCI address as sysfs names it (0000:01:00.0): hex digits, ':' and '.', nothing that leaves the folder.
+bool is_pci_address(const std::string& s) {
+  if (s.empty() || s.find("..") != std::string::npos) return false;
+  for (char c : s)
+    if (!std::isxdigit(static_cast<unsigned char>(c)) && c != ':' && c != '.') return false;
+  return true;
+}
 
 template <typename F>
 bool load(void* lib, const char* name, F& fn) {
@@ -56,6 +91,8 @@ struct GpuMonitor::Nvml {
   NvmlReturn (*clock_info)(NvmlDevice, int, unsigned*) = nullptr;
   NvmlReturn (*temperature)(NvmlDevice, int, unsigned*) = nullptr;
   NvmlReturn (*power_usage)(NvmlDevice, unsigned*) = nullptr;
+  NvmlReturn (*vbios_version)(NvmlDevice, char*, unsigned) = nullptr;  // optional
+  NvmlReturn (*pci_info)(NvmlDevice, NvmlPciInfo*) = nullptr;          // optional
   bool initialised = false;
 
   ~Nvml() {
@@ -139,8 +176,37 @@ GpuMonitor GpuMonitor::open_library(const std::string& path, const std::string& 
   char version[kVersionBuffer] = {};
   if (n->driver_version(version, kVersionBuffer) == kNvmlSuccess) m.driver_version_ = version;
   m.device_name_ = first_name;
+  m.read_identity(*n);
   m.nvml_ = std::move(n);
   return m;
+}
+
+void GpuMonitor::read_identity(Nvml& n) {
+  if (load(n.lib, "nvmlDeviceGetVbiosVersion", n.vbios_version)) {
+    char version[kVersionBuffer] = {};
+    if (n.vbios_version(n.device, version, kVersionBuffer) == kNvmlSuccess) vbios_version_ = version;
+  }
+  if (load(n.lib, "nvmlDeviceGetPciInfo_v3", n.pci_info)) {
+    NvmlPciInfo pci{};
+    if (n.pci_info(n.device, &pci) == kNvmlSuccess && pci.pci_device_id != 0)
+      pci_id_ = pci_id_text(pci.pci_device_id & 0xffffu, pci.pci_device_id >> 16);
+  }
+}
+
+GpuIdentity gpu_identity(const GpuMonitor& gpu, const std::string& pci_bus, const std::string& sysfs) {
+  GpuIdentity id{gpu.pci_id(), gpu.vbios_version()};
+  if (!is_pci_address(pci_bus)) return id;
+  const std::string dir = sysfs + "/bus/pci/devices/" + pci_bus + "/";
+  if (id.pci_id.empty()) {
+    const std::string vendor = first_line(dir + "vendor"), device = first_line(dir + "device");
+    char* end_v = nullptr;
+    char* end_d = nullptr;
+    const unsigned long v = std::strtoul(vendor.c_str(), &end_v, 16), d = std::strtoul(device.c_str(), &end_d, 16);
+    if (!vendor.empty() && !device.empty() && *end_v == '\0' && *end_d == '\0')
+      id.pci_id = pci_id_text(static_cast<unsigned>(v), static_cast<unsigned>(d));
+  }
+  if (id.vbios_version.empty()) id.vbios_version = first_line(dir + "vbios_version");  // amdgpu's
+  return id;
 }
 
 GpuReading GpuMonitor::read() const {

@@ -36,14 +36,27 @@ class GpuMonitor {
   const std::string& why_inactive() const { return why_; }
   const std::string& driver_version() const { return driver_version_; }
   const std::string& device_name() const { return device_name_; }
+  // The device's VBIOS version (nvmlDeviceGetVbiosVersion) and PCI ID ("10de:2335", vendor:device, from
+  // nvmlDeviceGetPciInfo_v3), where the library has those entry points; empty otherwise.
+  const std::string& vbios_version() const { return vbios_version_; }
+  const std::string& pci_id() const { return pci_id_; }
   // What can be read now; a value the device does not report stays empty.
   GpuReading read() const;
 
  private:
   struct Nvml;
+  void read_identity(Nvml& n);
   std::unique_ptr<Nvml> nvml_;
-  std::string why_, driver_version_, device_name_;
+  std::string why_, driver_version_, device_name_, vbios_version_, pci_id_;
 };
+
+// A run's GPU identity (the gpu_pci_id and gpu_vbios_version columns): NVML's where the monitor has it, else
+// sysfs's for the PCI bus the context's device is on (device_pci_bus: `sysfs`/bus/pci/devices/BUS/vendor,
+// device, and amdgpu's vbios_version). Empty what neither says (llvmpipe, no bus known). Never throws.
+struct GpuIdentity {
+  std::string pci_id, vbios_version;
+};
+GpuIdentity gpu_identity(const GpuMonitor& gpu, const std::string& pci_bus, const std::string& sysfs = "/sys");
 
 // The columns of one case group's readings (gpu_sm_clock_start_mhz, ..., gpu_power_end_w); a value not
 // read is an empty cell.

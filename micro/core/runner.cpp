@@ -123,6 +123,7 @@ class Runner {
     run_columns_ = machine_columns();
     const LlvmTarget llvm = llvm_target(gl_.renderer);
     const auto [drm_node, pci_bus] = device_node(opt_.context, ctx_->device());
+    const GpuIdentity gpu_id = gpu_identity(gpu_, pci_bus);
     run_columns_.insert({{"backend", ctx_->backend()},
                          {"device_drm_node", drm_node},
                          {"device_pci_bus", pci_bus},
@@ -134,7 +135,9 @@ class Runner {
                          {"gl_vendor", gl_.vendor},
                          {"gl_renderer", gl_.renderer},
                          {"gl_version", gl_.version},
-                         {"gpu_driver_version", gpu_.driver_version()}});
+                         {"gpu_driver_version", gpu_.driver_version()},
+                         {"gpu_pci_id", gpu_id.pci_id},
+                         {"gpu_vbios_version", gpu_id.vbios_version}});
 
     // Expand every request first so progress can say "case i of n"; with --shard, this shard's units only.
     const std::vector<Planned> plan = make_plan(registry_, requests, opt_, !gl_.is_software_renderer());

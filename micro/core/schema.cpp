@@ -89,6 +89,14 @@ std::vector<ColumnSpec> identity_columns() {
        "the GPU driver's version as NVML reports it (nvmlSystemGetDriverVersion), where GL_VENDOR is NVIDIA's and "
        "libnvidia-ml.so.1 loads; empty elsewhere",
        "run"},
+      {"gpu_pci_id", T::Text, "",
+       "the GPU's PCI vendor:device ID (10de:2335) from NVML, else from sysfs for device_pci_bus; empty where unknown "
+       "(llvmpipe)",
+       "run"},
+      {"gpu_vbios_version", T::Text, "",
+       "the GPU's VBIOS version from NVML (nvmlDeviceGetVbiosVersion), else sysfs's vbios_version for device_pci_bus "
+       "(amdgpu); empty where unknown",
+       "run"},
   };
 }
 

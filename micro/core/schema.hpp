@@ -20,7 +20,8 @@ class Registry;
 // and run identity (run_id, also in raw rows; tags) and the machine's (cpu_vendor/family/model_id/stepping,
 // cpu_isa, cpu_count, memory_bytes, kernel, machine_id, mesa_version, llvm_version, llvm_vector_bits).
 // 6: the time account (case_wall_s and phase_*_s, on total rows; core/phases.hpp).
-inline constexpr int kCsvSchema = 6;
+// 7: the GPU's identity (gpu_pci_id, gpu_vbios_version).
+inline constexpr int kCsvSchema = 7;
 
 enum class Status { Ok, Invalid, Unsupported, Error, Timeout };
 inline constexpr Status kAllStatuses[] = {Status::Ok, Status::Invalid, Status::Unsupported, Status::Error,

@@ -173,9 +173,10 @@ TEST(GpuStateColumns, WithoutNvmlTheyAreEmptyAndNothingFails) {
   for (auto& row : rows) {
     EXPECT_EQ(row["status"], "ok") << row["reason"];
     EXPECT_EQ(row["schema"], std::to_string(kCsvSchema));
-    for (const char* col : {"gpu_driver_version", "gpu_sm_clock_start_mhz", "gpu_sm_clock_end_mhz",
-                            "gpu_mem_clock_start_mhz", "gpu_mem_clock_end_mhz", "gpu_temp_start_c", "gpu_temp_end_c",
-                            "gpu_power_start_w", "gpu_power_end_w", "measured_occupancy"}) {
+    for (const char* col :
+         {"gpu_driver_version", "gpu_pci_id", "gpu_vbios_version", "gpu_sm_clock_start_mhz", "gpu_sm_clock_end_mhz",
+          "gpu_mem_clock_start_mhz", "gpu_mem_clock_end_mhz", "gpu_temp_start_c", "gpu_temp_end_c", "gpu_power_start_w",
+          "gpu_power_end_w", "measured_occupancy"}) {
       ASSERT_TRUE(row.count(col)) << "no column " << col;
       EXPECT_EQ(row[col], "") << col;
     }
@@ -201,6 +202,8 @@ TEST(GpuStateColumns, ThroughNvmlEachGroupRecordsItsClocksAndNotesAChange) {
   for (auto& row : rows) {
     EXPECT_EQ(row["status"], "ok") << row["reason"];
     EXPECT_EQ(row["gpu_driver_version"], "550.54.15");
+    EXPECT_EQ(row["gpu_pci_id"], "10de:20b2");  // llvmpipe's renderer names no fake device: the first, the A100
+    EXPECT_EQ(row["gpu_vbios_version"], "92.00.45.00.06");
     EXPECT_EQ(row["gpu_sm_clock_start_mhz"], "1980");
     EXPECT_EQ(row["gpu_sm_clock_end_mhz"], "1410");
     EXPECT_EQ(row["gpu_mem_clock_start_mhz"], "2619");

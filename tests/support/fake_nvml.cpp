@@ -1,6 +1,7 @@
 // A stand-in for libnvidia-ml.so.1 with the entry points core/gpu_state.cpp loads, so the tests can run the
 // NVML path on a machine without NVIDIA's driver. Two devices ("NVIDIA A100-SXM4-80GB", "NVIDIA H200"); the
-// SM clock alternates 1980 and 1410 MHz from one reading to the next, so a case group sees it change.
+// SM clock alternates 1980 and 1410 MHz from one reading to the next, so a case group sees it change. The H200
+// is PCI ID 10de:2335 with VBIOS 96.00.99.00.01.
 #include <cstring>
 
 namespace {
@@ -50,6 +51,20 @@ int nvmlDeviceGetTemperature(void*, int sensor, unsigned* temp) {
 }
 int nvmlDeviceGetPowerUsage(void*, unsigned* milliwatts) {
   *milliwatts = 350125;
+  return 0;
+}
+int nvmlDeviceGetVbiosVersion(void* device, char* version, unsigned length) {
+  return copy(device == kNames[1] ? "96.00.99.00.01" : "92.00.45.00.06", version, length);
+}
+// nvmlPciInfo_t: busIdLegacy[16], domain, bus, device, pciDeviceId (device << 16 | vendor), pciSubSystemId, busId[32].
+struct PciInfo {
+  char bus_id_legacy[16];
+  unsigned domain, bus, device, pci_device_id, pci_subsystem_id;
+  char bus_id[32];
+};
+int nvmlDeviceGetPciInfo_v3(void* device, PciInfo* pci) {
+  *pci = PciInfo{};
+  pci->pci_device_id = device == kNames[1] ? 0x233510deu : 0x20b210deu;
   return 0;
 }
 }

@@ -4,6 +4,11 @@
 
 #include <dlfcn.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
 
 namespace oitbench {
 
@@ -61,6 +66,37 @@ TEST(GpuState, ReadsTheGlContextsDeviceThroughNvml) {
   auto other = GpuMonitor::open_library(FAKE_NVML_LIBRARY, "NVIDIA GeForce RTX 4090/PCIe/SSE2");
   ASSERT_TRUE(other.active());
   EXPECT_EQ(other.device_name(), "NVIDIA A100-SXM4-80GB");
+  // The identity: NVML's PCI ID and VBIOS of the chosen device, before anything sysfs says.
+  EXPECT_EQ(m.pci_id(), "10de:2335");
+  EXPECT_EQ(m.vbios_version(), "96.00.99.00.01");
+  EXPECT_EQ(other.pci_id(), "10de:20b2");
+  const GpuIdentity id = gpu_identity(m, "0000:01:00.0", "/nonexistent");
+  EXPECT_EQ(id.pci_id, "10de:2335");
+  EXPECT_EQ(id.vbios_version, "96.00.99.00.01");
+}
+
+// Without NVML (AMD, Intel, egl-device on Mesa): sysfs's vendor, device and amdgpu's vbios_version for the
+// context's PCI bus; nothing (and no failure) where the bus is unknown, not an address, or not there.
+TEST(GpuState, TheIdentityComesFromSysfsWithoutNvml) {
+  const std::string root = ::testing::TempDir() + "oitbench-sysfs-" + std::to_string(::getpid());
+  const std::string dir = root + "/bus/pci/devices/0000:03:00.0";
+  ASSERT_EQ(std::system(("mkdir -p '" + dir + "'").c_str()), 0);
+  std::ofstream(dir + "/vendor") << "0x1002\n";
+  std::ofstream(dir + "/device") << "0x73bf\n";
+  std::ofstream(dir + "/vbios_version") << "113-D4120100-100\n";
+  const GpuMonitor none;
+  GpuIdentity id = gpu_identity(none, "0000:03:00.0", root);
+  EXPECT_EQ(id.pci_id, "1002:73bf");
+  EXPECT_EQ(id.vbios_version, "113-D4120100-100");
+  for (const std::string bus : {"", "0000:04:00.0", "../../../etc", "0000:03:00.0/.."}) {
+    id = gpu_identity(none, bus, root);
+    EXPECT_EQ(id.pci_id, "") << bus;
+    EXPECT_EQ(id.vbios_version, "") << bus;
+  }
+  std::ofstream(dir + "/device") << "not hex\n";  // a file that does not parse: no PCI ID, not a wrong one
+  EXPECT_EQ(gpu_identity(none, "0000:03:00.0", root).pci_id, "");
+  EXPECT_EQ(gpu_identity(GpuMonitor(), "", "/sys").pci_id, "");  // this machine's llvmpipe: nothing, no failure
+  ASSERT_EQ(std::system(("rm -rf '" + root + "'").c_str()), 0);
 }
 
 TEST(GpuState, TheClockNoteNeedsAChangeOverFivePercent) {
