@@ -83,6 +83,31 @@ TEST(Reference, ABrokenListIsReported) {
   EXPECT_FALSE(list_stats(h).error.empty());
 }
 
+// list_stats and the composite spread rows over the cores: the same numbers, and the first broken pixel
+// in pixel order is the one named, whichever thread met it.
+TEST(Reference, SpreadOverTheCoresTheFirstBrokenPixelIsNamed) {
+  HostLists h;
+  h.width = 2;
+  h.height = 4;
+  for (unsigned p = 0; p < 8; ++p) {
+    h.heads.push_back(p);
+    h.nodes.push_back({rgba8(255, 0, 0, 128), std::bit_cast<unsigned>(0.5f)});
+    h.next.push_back(kListEnd);
+  }
+  ListStats s = list_stats(h);
+  EXPECT_EQ(s.total_fragments, 8u);
+  EXPECT_EQ(s.covered_pixels, 8u);
+  EXPECT_TRUE(s.error.empty());
+  auto ref = composite_reference(h, Backdrop(glm::vec3(0.0f)));
+  for (size_t p = 1; p < 8; ++p)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(ref[p * 3 + k], ref[k]);
+  h.next[7] = 7;  // pixel (1,3): a cycle
+  h.next[5] = 9;  // pixel (1,2): outside the pool
+  s = list_stats(h);
+  EXPECT_NE(s.error.find("pixel (1,2)"), std::string::npos) << s.error;
+  EXPECT_EQ(s.total_fragments, 6u);
+}
+
 TEST(Reference, ListDepthsAreListStatsDepthsWithoutTheSort) {
   auto h = lists({{0.5f, rgba8(1, 2, 3, 4)}, {0.6f, rgba8(1, 2, 3, 4)}, {0.7f, rgba8(1, 2, 3, 4)}});
   ListDepths d = list_depths(h);

@@ -28,33 +28,72 @@ bool gather(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
   return true;
 }
 
+// Runs work(thread, pixel) for every pixel, rows spread over the cores (validation runs outside the
+// timed regions, so it may take them all); `work` writes only its pixel's results and its thread's.
+template <class Work>
+void for_each_pixel(const HostLists& l, unsigned threads, Work work) {
+  const size_t pixels = l.heads.size(), row = static_cast<size_t>(std::max(1, l.width));
+  auto rows = [&](unsigned t) {
+    for (size_t r = t; r * row < pixels; r += threads)
+      for (size_t p = r * row; p < std::min(pixels, (r + 1) * row); ++p) work(t, p);
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(rows, t);
+  rows(0);
+  for (auto& th : pool) th.join();
+}
+
+unsigned reference_threads(const HostLists& l) {
+  return std::clamp(std::thread::hardware_concurrency(), 1u, static_cast<unsigned>(std::max(1, l.height)));
+}
+
 }  // namespace
 
 ListStats list_stats(const HostLists& l) {
   ListStats s;
   size_t pixels = l.heads.size();
   s.depth.resize(pixels);
-  s.tied.assign(pixels, false);
-  std::vector<Frag> f;
-  for (size_t p = 0; p < pixels; ++p) {
-    if (!gather(l, p, f)) {
-      if (s.error.empty())
-        s.error = "the list of pixel (" + std::to_string(p % l.width) + "," + std::to_string(p / l.width) +
-                  ") is broken (a cycle or a node outside the pool)";
-      continue;
+  std::vector<char> tied(pixels, 0);
+  struct Partial {
+    size_t total = 0, covered = 0, first_broken = std::numeric_limits<size_t>::max();
+    unsigned peak = 0;
+    std::vector<Frag> f;
+  };
+  const unsigned threads = reference_threads(l);
+  std::vector<Partial> part(threads);
+  for_each_pixel(l, threads, [&](unsigned t, size_t p) {
+    Partial& w = part[t];
+    if (!gather(l, p, w.f)) {
+      w.first_broken = std::min(w.first_broken, p);
+      return;
     }
-    s.depth[p] = static_cast<unsigned>(f.size());
-    std::sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) { return a.depth < b.depth; });
-    for (size_t i = 1; i < f.size(); ++i)
-      if (f[i].depth == f[i - 1].depth && f[i].colour != f[i - 1].colour) {
-        s.tied[p] = true;
-        ++s.tied_pixels;
+    s.depth[p] = static_cast<unsigned>(w.f.size());
+    std::sort(w.f.begin(), w.f.end(), [](const Frag& a, const Frag& b) { return a.depth < b.depth; });
+    for (size_t i = 1; i < w.f.size(); ++i)
+      if (w.f[i].depth == w.f[i - 1].depth && w.f[i].colour != w.f[i - 1].colour) {
+        tied[p] = 1;
         break;
       }
-    s.total_fragments += f.size();
-    s.peak_depth = std::max(s.peak_depth, s.depth[p]);
-    if (!f.empty()) ++s.covered_pixels;
+    w.total += w.f.size();
+    w.peak = std::max(w.peak, s.depth[p]);
+    if (!w.f.empty()) ++w.covered;
+  });
+  size_t broken = std::numeric_limits<size_t>::max();
+  for (const auto& w : part) {
+    s.total_fragments += w.total;
+    s.covered_pixels += w.covered;
+    s.peak_depth = std::max(s.peak_depth, w.peak);
+    broken = std::min(broken, w.first_broken);
   }
+  if (broken < pixels)
+    s.error = "the list of pixel (" + std::to_string(broken % l.width) + "," + std::to_string(broken / l.width) +
+              ") is broken (a cycle or a node outside the pool)";
+  s.tied.assign(pixels, false);
+  for (size_t p = 0; p < pixels; ++p)
+    if (tied[p]) {
+      s.tied[p] = true;
+      ++s.tied_pixels;
+    }
   s.mean_depth = s.covered_pixels ? static_cast<double>(s.total_fragments) / s.covered_pixels : 0.0;
   return s;
 }
@@ -121,8 +160,10 @@ size_t hidden_fragments(const HostLists& l, const Backdrop& b) {
 std::vector<double> composite_reference(const HostLists& l, const Backdrop& backdrop) {
   size_t pixels = l.heads.size();
   std::vector<double> out(pixels * 3);
-  std::vector<Frag> f;
-  for (size_t p = 0; p < pixels; ++p) {
+  const unsigned threads = reference_threads(l);
+  std::vector<std::vector<Frag>> frags(threads);
+  for_each_pixel(l, threads, [&](unsigned t, size_t p) {
+    std::vector<Frag>& f = frags[t];
     gather(l, p, f);
     // Near to far; equal depths ordered by colour bits so the reference never depends on list order.
     std::stable_sort(f.begin(), f.end(), [](const Frag& a, const Frag& b) {
@@ -137,7 +178,7 @@ std::vector<double> composite_reference(const HostLists& l, const Backdrop& back
     }
     c += transmittance * glm::dvec3(backdrop.at(p));
     for (int k = 0; k < 3; ++k) out[p * 3 + k] = c[k];
-  }
+  });
   return out;
 }
 
