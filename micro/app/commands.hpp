@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/runner.hpp"
+#include "oit/techniques.hpp"
 
 namespace oitbench::app {
 
@@ -33,7 +34,8 @@ int run_command(Registry& registry, RunCommand& c);
 
 struct RenderCommand {
   RunOptions options;
-  std::string scene = "planes", view = "fwd", technique = "BASE-IS", out = "render.png", resolution = "512x512";
+  std::string scene = "planes", view = "fwd", technique = oit::default_technique(), out = "render.png",
+              resolution = "512x512";
   std::vector<std::string> sets;
 };
 int render_command(Registry& registry, const RenderCommand& c);

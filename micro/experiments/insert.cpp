@@ -14,6 +14,7 @@
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
 #include "oit/capture/packed_fragment.hpp"
+#include "shaders/sort/bindings.h"
 
 namespace oitbench {
 
@@ -102,8 +103,8 @@ class InsertCase final : public CaseInstance {
 
   void run(PassTimer& timer) override {
     glUseProgram(program_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BENCH_IN_BINDING, in_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BENCH_OUT_BINDING, out_.get());
     target_.bind();
     auto pass = timer.pass("insert");
     quad_.draw();

@@ -23,6 +23,7 @@
 #include "oit/resolve/resolve_sort.hpp"
 #include "oit/scene/gpu_mesh.hpp"
 #include "oit/scene/scene.hpp"
+#include "shaders/lines/bindings.h"
 
 namespace oitbench {
 
@@ -83,7 +84,7 @@ class LinesCase final : public CaseInstance {
       far_distance = std::max(far_distance, w);
     }
     far_distance = std::max(far_distance, near_distance + 1e-6f);
-    capture_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}}, {});
+    capture_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}}, {});
     glProgramUniformMatrix4fv(capture_.get(), glGetUniformLocation(capture_.get(), "viewProj"), 1, GL_FALSE,
                               &view_proj_[0][0]);
     // One capture now: the exact reference, and MAX_FRAGS for the exact resolve.
@@ -93,7 +94,7 @@ class LinesCase final : public CaseInstance {
     reference_ = composite_reference(host, background_);
     if (!slices_mode_) {
       max_frags_ = std::max(8u, next_pow2(stats_.peak_depth));
-      resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}},
+      resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve/resolve.frag"}},
                            sort_defines(ResolveSort::IMS, max_frags_, 32));
       glProgramUniform3f(resolve_.get(), glGetUniformLocation(resolve_.get(), "background"), background_.r,
                          background_.g, background_.b);
@@ -114,7 +115,7 @@ class LinesCase final : public CaseInstance {
     for (const char* phase : {"PHASE_LOCAL", "PHASE_BLOCKS", "PHASE_SCATTER"})
       split_.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
     emit_ = ctx.build({{GL_COMPUTE_SHADER, "lines/emit_indices.comp"}}, {});
-    blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "lines/blend.frag"}}, {});
+    blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "lines/blend.frag"}}, {});
     glProgramUniformMatrix4fv(blend_.get(), glGetUniformLocation(blend_.get(), "viewProj"), 1, GL_FALSE,
                               &view_proj_[0][0]);
     const GLsizeiptr n = static_cast<GLsizeiptr>(segments_ * sizeof(unsigned));
@@ -150,10 +151,10 @@ class LinesCase final : public CaseInstance {
     const GLuint groups = static_cast<GLuint>((segments_ + 255) / 256), count = static_cast<GLuint>(segments_);
     {
       auto t = timer.pass("keys");
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mesh_->vertex_buffer());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, keys0_.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, index0_.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, mesh_->line_index_buffer());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_VERTICES_BINDING, mesh_->vertex_buffer());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_KEYS_BINDING, keys0_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_INDICES_BINDING, index0_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_PRIMITIVES_BINDING, mesh_->line_index_buffer());
       glUseProgram(keys_prog_.get());
       glUniform1ui(glGetUniformLocation(keys_prog_.get(), "segments"), count);
       glDispatchCompute(groups, 1, 1);
@@ -164,12 +165,12 @@ class LinesCase final : public CaseInstance {
       for (int bit = 0; bit < bits_; ++bit) {
         const gl::Buffer& kin = bit == 0 ? keys0_ : keys_[(bit + 1) % 2];
         const gl::Buffer& iin = bit == 0 ? index0_ : index_[(bit + 1) % 2];
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, kin.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, iin.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, keys_[bit % 2].get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, index_[bit % 2].get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, local_.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, blocks_.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_KEYS_IN_BINDING, kin.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_INDICES_IN_BINDING, iin.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_KEYS_OUT_BINDING, keys_[bit % 2].get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_INDICES_OUT_BINDING, index_[bit % 2].get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_LOCAL_BINDING, local_.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_BLOCKS_BINDING, blocks_.get());
         for (size_t phase = 0; phase < split_.size(); ++phase) {
           glUseProgram(split_[phase].get());
           glUniform1ui(glGetUniformLocation(split_[phase].get(), "count"), count);
@@ -178,9 +179,9 @@ class LinesCase final : public CaseInstance {
           glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
       }
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sorted_index().get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, elements_.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, mesh_->line_index_buffer());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_SORTED_BINDING, sorted_index().get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_ELEMENTS_BINDING, elements_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_PRIMITIVES_BINDING, mesh_->line_index_buffer());
       glUseProgram(emit_.get());
       glUniform1ui(glGetUniformLocation(emit_.get(), "segments"), count);
       glDispatchCompute(groups, 1, 1);

@@ -13,6 +13,7 @@
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
 #include "models/occupancy_model.hpp"
+#include "shaders/occupancy/bindings.h"
 
 namespace oitbench {
 
@@ -184,13 +185,13 @@ class OccupancyCase final : public CaseInstance {
     auto buffer = gl::make_buffer();
     const auto bytes = static_cast<GLsizeiptr>(slots.size() * sizeof(unsigned));
     glNamedBufferData(buffer.get(), bytes, slots.data(), GL_DYNAMIC_READ);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OCCUPANCY_SLOTS_BINDING, buffer.get());
     target_.bind();
     glUseProgram(measure_program_.get());
     for (int i = 0; i < draws_; ++i) quad_.draw();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(buffer.get(), 0, bytes, slots.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OCCUPANCY_SLOTS_BINDING, 0);
     if (GLenum err = glGetError(); err != GL_NO_ERROR) {
       char hex[16];
       std::snprintf(hex, sizeof hex, "0x%04x", err);

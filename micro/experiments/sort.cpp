@@ -19,6 +19,7 @@
 #include "gl/render_target.hpp"
 #include "oit/capture/packed_fragment.hpp"
 #include "oit/reference/metrics.hpp"
+#include "shaders/sort/bindings.h"
 
 namespace oitbench {
 
@@ -164,8 +165,8 @@ class SortCase final : public CaseInstance {
 
   void run(PassTimer& timer) override {
     glUseProgram(program_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BENCH_IN_BINDING, in_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BENCH_OUT_BINDING, out_.get());
     auto pass = timer.pass("sort");
     if (compute_) {
       glDispatchCompute(static_cast<GLuint>((width_ + 7) / 8), static_cast<GLuint>((height_ + 7) / 8), 1);

@@ -138,6 +138,8 @@ const Technique& technique(const std::string& name) {
   throw std::invalid_argument("unknown technique '" + name + "'; valid: " + valid);
 }
 
+const std::string& default_technique() { return techniques().front().name; }
+
 std::vector<std::string> technique_names() {
   std::vector<std::string> out;
   for (const auto& t : techniques()) out.push_back(t.name);

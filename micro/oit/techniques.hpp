@@ -50,6 +50,8 @@ const Technique* find_technique(const std::string& name);
 // The technique named `name`; std::invalid_argument listing the valid names otherwise.
 const Technique& technique(const std::string& name);
 std::vector<std::string> technique_names();
+// The technique `oitbench render` and `oitbench view` start with: the table's first (BASE-IS).
+const std::string& default_technique();
 std::vector<std::string> technique_names(TechniqueFamily family);
 // The techniques that read `param`, in table order (a parameter spec's only_when list).
 std::vector<std::string> techniques_reading(const std::string& param);

@@ -4,14 +4,9 @@
 
 #include "gl/gl.hpp"
 #include "oit/capture/fragment_storage.hpp"
+#include "shaders/viewer/bindings.h"
 
 namespace oitbench::viewer {
-
-namespace {
-// Beside the storage's own units and bindings (micro/oit/capture/fragment_storage.hpp: images 0-3, atomic
-// counter 0, storage buffer 2).
-constexpr GLuint kDepthCountsUnit = 4, kDepthStatsBinding = 1;
-}  // namespace
 
 DepthComplexity::DepthComplexity(const ShaderLibrary& shaders)
     : shaders_(shaders),
@@ -36,8 +31,8 @@ DepthComplexity::Counts DepthComplexity::count(const oit::FragmentStorage& lists
   const std::array<unsigned, 2> zero{0, 0};
   glNamedBufferSubData(stats_.get(), 0, sizeof zero, zero.data());
   lists.bind();
-  glBindImageTexture(kDepthCountsUnit, counts_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDepthStatsBinding, stats_.get());
+  glBindImageTexture(DEPTH_COUNTS_UNIT, counts_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DEPTH_STATS_BINDING, stats_.get());
   glUseProgram(count_.get());
   glDispatchCompute((width + 7) / 8, (height + 7) / 8, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -51,8 +46,8 @@ void DepthComplexity::draw(int fb_width, int fb_height) const {
   glUseProgram(colour_.get());
   glUniform2f(glGetUniformLocation(colour_.get(), "texelsPerPixel"), static_cast<float>(width_) / fb_width,
               static_cast<float>(height_) / fb_height);
-  glBindImageTexture(kDepthCountsUnit, counts_.get(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDepthStatsBinding, stats_.get());
+  glBindImageTexture(DEPTH_COUNTS_UNIT, counts_.get(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DEPTH_STATS_BINDING, stats_.get());
   triangle_.draw();
 }
 

@@ -4,6 +4,7 @@
 
 #include "gl/gl.hpp"
 #include "oit/reference/image_io.hpp"
+#include "shaders/viewer/bindings.h"
 
 namespace oitbench::viewer {
 
@@ -18,8 +19,8 @@ void ImagePresenter::draw(GLuint image, int image_width, int image_height, glm::
   glUniform2f(glGetUniformLocation(program_.get(), "texelsPerPixel"), static_cast<float>(image_width) / fb_width,
               static_cast<float>(image_height) / fb_height);
   glUniform1i(glGetUniformLocation(program_.get(), "hasOpaque"), opaque != 0);
-  glBindTextureUnit(0, image);
-  glBindTextureUnit(1, opaque);
+  glBindTextureUnit(PRESENT_IMAGE_UNIT, image);
+  glBindTextureUnit(PRESENT_OPAQUE_UNIT, opaque);
   triangle_.draw();
 }
 

@@ -9,13 +9,14 @@
 
 #include "backends/backend.hpp"
 #include "core/registry.hpp"
+#include "oit/techniques.hpp"
 
 namespace oitbench::viewer {
 
 struct ViewerOptions {
   std::string scene = "planes";  // name in scenes/ or a path to a .json
   std::string view;              // empty: the scene file's first view
-  std::string technique = "BASE-IS";
+  std::string technique = oit::default_technique();
   std::string size = "800x600";   // window WIDTHxHEIGHT
   std::string detail = "full";    // full | small
   std::vector<std::string> sets;  // other oit parameters, NAME=VALUE

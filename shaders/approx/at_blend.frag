@@ -4,7 +4,7 @@
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "visibility.glsl"
-#include "../oit/shade.glsl"
+#include "../scene/shade.glsl"
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;

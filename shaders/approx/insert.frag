@@ -24,7 +24,7 @@
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "nodes.glsl"
-#include "../oit/shade.glsl"
+#include "../scene/shade.glsl"
 #include "bindings.h"
 // The opaque effect's depth test must come before the node stores (a hidden fragment is never
 // inserted); without a depth attachment this changes nothing.

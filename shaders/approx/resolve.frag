@@ -24,7 +24,7 @@ layout(binding = APPROX_ACCUM_UNIT) uniform sampler2D accumulation;
 layout(binding = APPROX_REVEAL_UNIT) uniform sampler2D tailCount;
 #endif
 
-#include "../oit/backdrop.glsl"
+#include "../scene/backdrop.glsl"
 uniform int zero;
 layout(location = 0) out vec4 fragColour;
 

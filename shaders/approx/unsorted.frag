@@ -1,7 +1,7 @@
 // No OIT: plain "over" blending (src alpha, 1 - src alpha) in submission order onto the background.
 #include "../common/oitbench.glsl"
 #include "nodes.glsl"
-#include "../oit/shade.glsl"
+#include "../scene/shade.glsl"
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;

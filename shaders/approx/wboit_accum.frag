@@ -5,7 +5,7 @@
 // the view-space distance; WEIGHT_EQ10: Eq. 10 on the window depth gl_FragCoord.z.
 #include "../common/oitbench.glsl"
 #include "nodes.glsl"
-#include "../oit/shade.glsl"
+#include "../scene/shade.glsl"
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;

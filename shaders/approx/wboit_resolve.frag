@@ -5,7 +5,7 @@
 #include "bindings.h"
 layout(binding = APPROX_ACCUM_UNIT) uniform sampler2D accumulation;
 layout(binding = APPROX_REVEAL_UNIT) uniform sampler2D revealage;
-#include "../oit/backdrop.glsl"
+#include "../scene/backdrop.glsl"
 uniform int zero;
 layout(location = 0) out vec4 fragColour;
 void main() {

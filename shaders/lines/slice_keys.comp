@@ -5,14 +5,15 @@
 // micro/oit/scene/shadow_map.cpp) indices at PRIMITIVE_VERTICES * i (Mesh::line_indices, Mesh::indices)
 // into the scene mesh's oit::Vertex records of VERTEX_FLOATS floats, the position first.
 #include "../common/oitbench.glsl"
+#include "bindings.h"
 #ifndef PRIMITIVE_VERTICES
 #define PRIMITIVE_VERTICES 2
 #endif
 layout(local_size_x = 256) in;
-layout(std430, binding = 0) readonly buffer Vertices { float vertexFloats[]; };
-layout(std430, binding = 1) writeonly buffer Keys { uint keys[]; };
-layout(std430, binding = 2) writeonly buffer Indices { uint indices[]; };
-layout(std430, binding = 3) readonly buffer PrimitiveIndices { uint primitiveIndices[]; };
+layout(std430, binding = SLICE_KEYS_VERTICES_BINDING) readonly buffer Vertices { float vertexFloats[]; };
+layout(std430, binding = SLICE_KEYS_KEYS_BINDING) writeonly buffer Keys { uint keys[]; };
+layout(std430, binding = SLICE_KEYS_INDICES_BINDING) writeonly buffer Indices { uint indices[]; };
+layout(std430, binding = SLICE_KEYS_PRIMITIVES_BINDING) readonly buffer PrimitiveIndices { uint primitiveIndices[]; };
 uniform mat4 viewProj;
 uniform float nearDistance, farDistance;
 uniform uint segments;

@@ -3,12 +3,13 @@
 //   PHASE_BLOCKS: exclusive prefix sum over the block totals (one invocation: a few thousand blocks)
 //   PHASE_SCATTER: zeros go to their prefix position, ones after all zeros, order kept within each
 #include "../common/oitbench.glsl"
-layout(std430, binding = 0) buffer KeysIn { uint keysIn[]; };
-layout(std430, binding = 1) buffer IndicesIn { uint indicesIn[]; };
-layout(std430, binding = 2) buffer KeysOut { uint keysOut[]; };
-layout(std430, binding = 3) buffer IndicesOut { uint indicesOut[]; };
-layout(std430, binding = 4) buffer Local { uint localPrefix[]; };
-layout(std430, binding = 5) buffer Blocks { uint blockSum[]; };  // [0] total zeros, [1 + b] block b
+#include "bindings.h"
+layout(std430, binding = SPLIT_KEYS_IN_BINDING) buffer KeysIn { uint keysIn[]; };
+layout(std430, binding = SPLIT_INDICES_IN_BINDING) buffer IndicesIn { uint indicesIn[]; };
+layout(std430, binding = SPLIT_KEYS_OUT_BINDING) buffer KeysOut { uint keysOut[]; };
+layout(std430, binding = SPLIT_INDICES_OUT_BINDING) buffer IndicesOut { uint indicesOut[]; };
+layout(std430, binding = SPLIT_LOCAL_BINDING) buffer Local { uint localPrefix[]; };
+layout(std430, binding = SPLIT_BLOCKS_BINDING) buffer Blocks { uint blockSum[]; };  // [0] total zeros, [1 + b] block b
 uniform uint count;
 uniform uint bit;
 

@@ -3,7 +3,7 @@
 #include "bindings.h"
 layout(binding = MOMENTS_B0_UNIT) uniform sampler2D b0Moment;
 layout(binding = MOMENTS_ACCUM_UNIT) uniform sampler2D weightedColour;
-#include "../oit/backdrop.glsl"
+#include "../scene/backdrop.glsl"
 uniform int zero;
 layout(location = 0) out vec4 fragColour;
 

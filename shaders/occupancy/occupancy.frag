@@ -13,6 +13,7 @@
 #extension GL_NV_shader_thread_group : require
 #endif
 #include "../common/oitbench.glsl"
+#include "bindings.h"
 
 uniform int zero;  // always 0; unknown to the compiler
 layout(location = 0) out vec4 fragColour;
@@ -20,7 +21,7 @@ layout(location = 0) out vec4 fragColour;
 #if defined(OCCUPANCY_MEASURE)
 // [0]: warps whose SM or warp id was out of range; then per SM, ceil(gl_WarpsPerSMNV / 32) words, one bit
 // per warp slot.
-layout(std430, binding = 0) buffer OccupancySlots { uint occupancy_slots[]; };
+layout(std430, binding = OCCUPANCY_SLOTS_BINDING) buffer OccupancySlots { uint occupancy_slots[]; };
 
 void mark_warp_slot() {
   // The lowest lane that is not a helper invocation (helpers' atomics are discarded) speaks for its warp.

@@ -19,8 +19,8 @@
 // The scene effects: the opaque effect's depth tested here (the peel has its own depth targets, so
 // not by a depth buffer: a fragment behind the opaque surface is discarded before anything), and the
 // shading of every scene fragment (self-shadowing).
-#include "../oit/backdrop.glsl"
-#include "../oit/shade.glsl"
+#include "../scene/backdrop.glsl"
+#include "../scene/shade.glsl"
 in vec4 vColour;
 in vec2 vUv;
 in float vSoft;

@@ -6,7 +6,7 @@ layout(binding = PEEL_FRONT_ACCUM_UNIT) uniform sampler2D frontAccum;
 #if defined(DUAL)
 layout(binding = PEEL_BACK_ACCUM_UNIT) uniform sampler2D backAccum;
 #endif
-#include "../oit/backdrop.glsl"
+#include "../scene/backdrop.glsl"
 uniform int zero;
 layout(location = 0) out vec4 fragColour;
 

@@ -1,4 +1,4 @@
-// What a fragment casts into the opacity shadow map: its alpha as shaders/oit/capture.frag computes
+// What a fragment casts into the opacity shadow map: its alpha as shaders/capture/capture.frag computes
 // it (soft billboards' radial falloff), rounded to the 8 bits the validation's light capture keeps
 // (so the CPU map sums the same values), and its optical depth -log(1 - alpha), which adds up
 // along a ray where alphas multiply.

@@ -4,9 +4,10 @@
 //   PHASE_BOUNDS:   where each key's run starts and ends (its first and last element say so)
 //   PHASE_COMMANDS: command `slice` = DrawElementsIndirectCommand over that run (count 0 if empty)
 #include "../common/oitbench.glsl"
-layout(std430, binding = 0) readonly buffer SortedKeys { uint sortedKeys[]; };
-layout(std430, binding = 1) buffer Bounds { uint bounds[]; };  // [2 key] first, [2 key + 1] end; zeroed
-layout(std430, binding = 2) writeonly buffer Commands { uint commands[]; };  // 5 uints per slice
+#include "bindings.h"
+layout(std430, binding = SLICE_RANGES_SORTED_KEYS_BINDING) readonly buffer SortedKeys { uint sortedKeys[]; };
+layout(std430, binding = SLICE_RANGES_BOUNDS_BINDING) buffer Bounds { uint bounds[]; };  // [2 key] first, [2 key + 1] end; zeroed
+layout(std430, binding = SLICE_RANGES_COMMANDS_BINDING) writeonly buffer Commands { uint commands[]; };  // 5 uints per slice
 uniform uint count;
 
 #if defined(PHASE_BOUNDS)

@@ -2,7 +2,7 @@
 // micro/oit/scene/shadow_map.cpp builds and binds (OpacityShadowMap::bind): the map's layers are the
 // optical depth in front of each slice boundary, interpolated linearly between boundaries (and
 // bilinearly across texels) by the 3D texture's filter. Outside the light's frustum: fully lit.
-// The caller applies the ambient floor (shaders/oit/shade.glsl).
+// The caller applies the ambient floor (shaders/scene/shade.glsl).
 #ifndef OITBENCH_SHADOW_TRANSMITTANCE_GLSL
 #define OITBENCH_SHADOW_TRANSMITTANCE_GLSL
 #include "bindings.h"

@@ -24,9 +24,10 @@
 #endif
 
 #include "../sorts/api.glsl"
+#include "bindings.h"
 
-layout(std430, binding = 0) readonly buffer InFrags { uvec2 in_frags[]; };
-layout(std430, binding = 1) writeonly buffer OutFrags { uvec2 out_frags[]; };
+layout(std430, binding = SORT_BENCH_IN_BINDING) readonly buffer InFrags { uvec2 in_frags[]; };
+layout(std430, binding = SORT_BENCH_OUT_BINDING) writeonly buffer OutFrags { uvec2 out_frags[]; };
 
 uniform int count;       // == SORT_N
 uniform int count_log2;  // == SORT_N_LOG2

@@ -4,7 +4,7 @@
 // experiments names the file it ran and a hash of its text in the `sort_source` column.
 //
 // The caller "binds" the API to its array before it calls a sort (shaders/sort/frags.glsl: the sort
-// experiment's ascending depth keys; shaders/oit/resolve_pixel.glsl: far-to-near fragments;
+// experiment's ascending depth keys; shaders/resolve/resolve_pixel.glsl: far-to-near fragments;
 // shaders/stencil/resolve.frag: nodes by .y). A binding defines:
 //   SORT_T          the element type
 //   SORT_AT(i)      element i of the array being sorted, an lvalue
@@ -45,7 +45,7 @@
 // (tests/unit/sort_library_test.cpp checks the whole shader tree); helpers elsewhere take other names.
 // A new sort: shaders/sorts/<name>.glsl defining sort_<name>() against this API; then select it
 // where it runs (shaders/sort/algorithms.glsl and the variant table in micro/experiments/sort.cpp;
-// shaders/oit/resolve_pixel.glsl and micro/oit/resolve/resolve_sort.cpp).
+// shaders/resolve/resolve_pixel.glsl and micro/oit/resolve/resolve_sort.cpp).
 //
 // Including: the shader assembler (micro/gl/shader.cpp) emits a file once, at its first
 // #include, whatever #if surrounds it. Include this file unconditionally before any #if that

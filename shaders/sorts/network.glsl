@@ -6,13 +6,13 @@
 // select without a branch: a driver that runs `if` as masked straight-line code (llvmpipe) pays
 // the network's fixed size and nothing more, and a GPU never diverges. The network always sorts
 // SORT_N elements (SORT_SIZE is not read): a caller with fewer pads the rest with elements that
-// belong last (shaders/oit/rbs.glsl).
+// belong last (shaders/resolve/rbs.glsl).
 //   SORT_NETWORK_BITONIC         the bitonic network (240 compare-exchanges at 32)
 //   SORT_NETWORK_ODD_EVEN_MERGE  the odd-even merge network (191 at 32)
 // The compare-exchange, per binding:
 //   SORT_FIRST(a, b), SORT_LAST(a, b) defined by the binding: the element of a and b that belongs
 //       first and last, e.g. min and max of a packed 64-bit key (shaders/sort/frags.glsl,
-//       shaders/oit/resolve_pixel.glsl with SORT_PACKED_KEY64): two selects per comparator
+//       shaders/resolve/resolve_pixel.glsl with SORT_PACKED_KEY64): two selects per comparator
 //   otherwise: one SORT_GT and a select of each element by its result
 #include "api.glsl"
 #include "network_tables.glsl"

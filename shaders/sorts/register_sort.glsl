@@ -6,7 +6,7 @@
 // is in place (the early exit). RBS sorts blocks of up to 32 with RS and k-way merges the blocks;
 // for up to 32 elements there is one block and RBS is RS.
 //   the sort experiment (`rbs`):  n = its `count` uniform, on its SORT_N elements
-//   the oit resolves (RBS-L, RBS-G: shaders/oit/rbs.glsl):  n = the block's fragments, on the
+//   the oit resolves (RBS-L, RBS-G: shaders/resolve/rbs.glsl):  n = the block's fragments, on the
 //                                 resolve's `registers` block (SORT_N = RBS_M)
 //
 // RBS_INSERT_j moves element j down until it is in place: a nest of j compare-and-swaps.

@@ -4,8 +4,8 @@
 #include "../common/oitbench.glsl"
 #include "../approx/nodes.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
-#include "../oit/backdrop.glsl"
-#include "../oit/shade.glsl"
+#include "../scene/backdrop.glsl"
+#include "../scene/shade.glsl"
 in vec4 vColour;
 in vec3 vWorld;
 in vec2 vUv;

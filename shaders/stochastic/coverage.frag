@@ -5,7 +5,7 @@
 #include "../approx/nodes.glsl"
 #include "bindings.h"
 // The shading of every scene fragment (self-shadowing).
-#include "../oit/shade.glsl"
+#include "../scene/shade.glsl"
 in vec4 vColour;
 in vec3 vWorld;
 in vec2 vUv;

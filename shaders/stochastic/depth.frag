@@ -5,8 +5,8 @@
 #include "../approx/nodes.glsl"
 #include "hash.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
-#include "../oit/backdrop.glsl"
-#include "../oit/shade.glsl"
+#include "../scene/backdrop.glsl"
+#include "../scene/shade.glsl"
 in vec4 vColour;
 in vec3 vWorld;
 in vec2 vUv;

@@ -4,7 +4,7 @@
 #include "bindings.h"
 layout(binding = STOCHASTIC_ACCUM_UNIT) uniform sampler2DMS accumulation;
 layout(binding = STOCHASTIC_TOTAL_UNIT) uniform sampler2D totalTransmittance;
-#include "../oit/backdrop.glsl"
+#include "../scene/backdrop.glsl"
 uniform int zero;
 layout(location = 0) out vec4 fragColour;
 

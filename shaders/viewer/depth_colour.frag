@@ -1,8 +1,9 @@
 // Depth complexity in false colour: blue (1 fragment) -> green -> red (the peak) on a log scale,
 // black where no fragment landed.
 #include "../common/oitbench.glsl"
-layout(binding = 4, r32ui) uniform readonly uimage2D depthCounts;
-layout(std430, binding = 1) readonly buffer DepthStats {
+#include "bindings.h"
+layout(binding = DEPTH_COUNTS_UNIT, r32ui) uniform readonly uimage2D depthCounts;
+layout(std430, binding = DEPTH_STATS_BINDING) readonly buffer DepthStats {
   uint peak;
   uint total;
 };

@@ -1,10 +1,11 @@
 // The viewer's depth complexity: each pixel's captured fragments, counted by walking its storage
 // through the FRAG_* API only (so any storage layout works), plus the peak and the total.
 #include "../common/oitbench.glsl"
+#include "bindings.h"
 #include "../capture/fragment_storage.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 4, r32ui) uniform writeonly uimage2D depthCounts;
-layout(std430, binding = 1) buffer DepthStats {
+layout(binding = DEPTH_COUNTS_UNIT, r32ui) uniform writeonly uimage2D depthCounts;
+layout(std430, binding = DEPTH_STATS_BINDING) buffer DepthStats {
   uint peak;
   uint total;
 };

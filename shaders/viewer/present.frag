@@ -2,8 +2,9 @@
 // no fragment landed (alpha == 0: the scene's background, or with the opaque effect the opaque
 // pass's colour), nearest texel when the window is resized.
 #include "../common/oitbench.glsl"
-layout(binding = 0) uniform sampler2D image;
-layout(binding = 1) uniform sampler2D opaqueImage;
+#include "bindings.h"
+layout(binding = PRESENT_IMAGE_UNIT) uniform sampler2D image;
+layout(binding = PRESENT_OPAQUE_UNIT) uniform sampler2D opaqueImage;
 uniform bool hasOpaque;
 uniform vec3 background;
 uniform vec2 texelsPerPixel;

@@ -138,11 +138,11 @@ class ApproxCase final : public OitCase {
       glTextureStorage2D(locks_.get(), 1, GL_R32UI, width_, height_);
       stats_ = gl::make_buffer();
       glNamedBufferStorage(stats_.get(), sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
-      insert_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/insert.frag"}}, d);
+      insert_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "approx/insert.frag"}}, d);
       set_view_proj(insert_, vp);
       if (at_family_ || ht_) {
         const char* pass2 = ht_ ? "approx/ht_tail.frag" : "approx/at_blend.frag";
-        blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, pass2}}, d);
+        blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, pass2}}, d);
         set_view_proj(blend_, vp);
       }
       if (ht_) {  // the tail's fragment count beside its sums
@@ -155,7 +155,7 @@ class ApproxCase final : public OitCase {
           ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/resolve.frag"}}, d);
     } else if (tech == T::Wboit) {
       d.push_back({"WEIGHT_" + upper(settings_.weight), ""});
-      blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_accum.frag"}}, d);
+      blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_accum.frag"}}, d);
       set_view_proj(blend_, vp);
       glProgramUniform2f(blend_.get(), glGetUniformLocation(blend_.get(), "nearFar"), settings_.near_far.x,
                          settings_.near_far.y);
@@ -166,7 +166,7 @@ class ApproxCase final : public OitCase {
           {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
       bytes_per_pixel_ = 16.0 + 4.0;
     } else {
-      blend_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
+      blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
     }
   }
@@ -194,7 +194,7 @@ class ApproxCase final : public OitCase {
       auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
                                          capture_budget(passes_.mesh(), vp, ctx, passes_.opaque() ? 2 : 1));
       auto capture = build_capture_programs(
-          *lists, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+          *lists, ctx, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
           passes_.geometry_defines());
       for (const auto& prog : capture) {
         set_view_proj(prog, vp);

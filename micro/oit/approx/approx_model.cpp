@@ -15,17 +15,15 @@ constexpr unsigned kOneBits = 0x3F800000u;
 // --- The node encodings of shaders/approx/nodes.glsl, on the CPU --------------------------------
 using Node = glm::uvec2;
 
-float unorm8(unsigned c, int k) { return static_cast<float>((c >> (8 * k)) & 0xffu) / 255.0f; }
 unsigned pack_unorm(float v) { return static_cast<unsigned>(std::nearbyint(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 unsigned pack4(glm::vec4 v) {
   return pack_unorm(v.x) | pack_unorm(v.y) << 8 | pack_unorm(v.z) << 16 | pack_unorm(v.w) << 24;
 }
-glm::vec4 unpack4(unsigned c) { return {unorm8(c, 0), unorm8(c, 1), unorm8(c, 2), unorm8(c, 3)}; }
 
 float node_depth(Node n) { return n.y == 0u ? kDepthEmpty : std::bit_cast<float>(n.y - 1u); }
 unsigned encode_depth(float z) { return z >= kDepthEmpty ? 0u : std::bit_cast<unsigned>(z) + 1u; }
 glm::vec4 mlab_value(Node n) {
-  glm::vec4 k = unpack4(n.x);
+  glm::vec4 k = unpack_rgba8(n.x);
   return {k.x, k.y, k.z, 1.0f - k.w};
 }
 Node mlab_node(glm::vec4 ct, float z) { return {pack4({ct.x, ct.y, ct.z, 1.0f - ct.w}), encode_depth(z)}; }
@@ -256,24 +254,8 @@ float wboit_weight(const std::string& w, float d, glm::vec2 nf) {
   return std::clamp(3e3f * std::pow(1.0f - d, 3.0f), 1e-2f, 3e3f);
 }
 
-struct Frag {
-  glm::vec4 colour;
-  float depth;
-};
-
-// One pixel's fragments in arrival order: the linked list prepends, so its reverse.
-void arrival_order(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
-  out.clear();
-  for (unsigned i = l.heads[pixel]; i != kListEnd && i < l.nodes.size() && out.size() <= l.nodes.size(); i = l.next[i])
-    out.push_back({unpack4(l.nodes[i].x), std::bit_cast<float>(l.nodes[i].y)});
-  std::reverse(out.begin(), out.end());
-}
-}  // namespace
-
-namespace {
-
 // HT on the CPU: the core of the n nearest fragments in `s`, then the tail averaged behind it.
-glm::vec3 ht_pixel(const std::vector<Frag>& frags, std::vector<Node>& s, int n, glm::vec3 bg) {
+glm::vec3 ht_pixel(const std::vector<ArrivedFragment>& frags, std::vector<Node>& s, int n, glm::vec3 bg) {
   // The core: the n nearest fragments in (depth, colour) order, as shaders/approx/insert/ht.glsl.
   std::fill(s.begin(), s.end(), Node(0u));
   for (const auto& f : frags) {
@@ -293,7 +275,7 @@ glm::vec3 ht_pixel(const std::vector<Frag>& frags, std::vector<Node>& s, int n, 
   glm::vec3 acc(0.0f);
   float t = 1.0f;
   for (const Node& node : s) {
-    glm::vec4 k = unpack4(node.x);
+    glm::vec4 k = unpack_rgba8(node.x);
     acc += t * k.w * glm::vec3(k);
     t *= 1.0f - k.w;
   }
@@ -318,6 +300,77 @@ glm::vec3 ht_pixel(const std::vector<Frag>& frags, std::vector<Node>& s, int n, 
   return acc + t * (tail + tail_t * bg);
 }
 
+// WBOIT on the CPU: the weighted average of the colours over the product of the revealages.
+glm::vec3 wboit_pixel(const std::vector<ArrivedFragment>& frags, const ApproxSettings& st, glm::vec3 bg) {
+  glm::vec4 acc(0.0f);
+  float reveal = 1.0f;
+  for (const auto& f : frags) {
+    float w = f.colour.a * wboit_weight(st.weight, f.depth, st.near_far);
+    acc += glm::vec4(glm::vec3(f.colour) * w, w);
+    reveal *= 1.0f - f.colour.a;
+  }
+  if (frags.empty()) return bg;
+  glm::vec3 average = glm::vec3(acc) / (st.unguarded ? acc.a : std::clamp(acc.a, 1e-4f, 5e4f));
+  return average * (1.0f - reveal) + bg * reveal;
+}
+
+// One fragment (premultiplied colour, transmittance in w) into the nodes of MLAB, UMLAB or the AT family.
+void insert_node(ApproxTechnique tech, std::vector<Node>& s, int n, glm::vec4 ct, float depth, bool unguarded) {
+  using T = ApproxTechnique;
+  switch (tech) {
+    case T::Mlab:
+      insert_mlab(s, n, ct, depth);
+      break;
+    case T::Umlab:
+      insert_umlab(s, n, ct, depth);
+      break;
+    case T::At:
+      insert_at(s, n, ct.w, depth, false, unguarded);
+      break;
+    case T::Hat:
+      insert_at(s, n, ct.w, depth, true, unguarded);
+      break;
+    case T::Uat:
+      insert_uat(s, n, ct.w, depth);
+      break;
+    case T::Laat:
+      insert_laat(s, n, ct.w, depth);
+      break;
+    default:
+      insert_uhat(s, n, ct.w, depth, unguarded);
+      break;
+  }
+}
+
+// MLAB and UMLAB's resolve: the nodes composited near to far (UMLAB's insertion sort is stable).
+glm::vec3 mlab_pixel(const std::vector<Node>& s, bool unsorted_nodes, glm::vec3 bg) {
+  std::vector<std::pair<float, glm::vec4>> nodes;
+  for (const Node& node : s) nodes.push_back({node_depth(node), mlab_value(node)});
+  if (unsorted_nodes)
+    std::stable_sort(nodes.begin(), nodes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  glm::vec3 acc(0.0f);
+  float t = 1.0f;
+  for (const auto& [z, ct] : nodes) {
+    acc += t * glm::vec3(ct);
+    t *= ct.w;
+  }
+  return acc + t * bg;
+}
+
+// The AT family's resolve: each fragment weighted by the visibility the nodes hold at its depth.
+glm::vec3 at_pixel(const std::vector<ArrivedFragment>& frags, const std::vector<Node>& s, bool relative, bool laat,
+                   bool unguarded, glm::vec3 bg) {
+  glm::vec4 acc(0.0f);
+  for (const auto& f : frags) {
+    float w = f.colour.a * visibility(s, f.depth, relative, laat);
+    acc += glm::vec4(glm::vec3(f.colour) * w, w);
+  }
+  float total = visibility(s, kDepthEmpty, relative, laat), opacity = 1.0f - total;
+  if (!unguarded && acc.a > opacity * (1.0f + 1e-5f) + 1e-6f)
+    acc = glm::vec4(glm::vec3(acc) * (opacity / acc.a), acc.a);
+  return glm::vec3(acc) + total * bg;
+}
+
 }  // namespace
 
 ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const ApproxSettings& st) {
@@ -325,7 +378,7 @@ ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const App
   const int n = st.nodes;
   ApproxModel m;
   m.rgb.resize(pixels * 3);
-  std::vector<Frag> frags;
+  std::vector<ArrivedFragment> frags;
   std::vector<Node> s(n);
   using T = ApproxTechnique;
   const T tech = st.technique;
@@ -340,68 +393,13 @@ ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const App
     } else if (tech == T::Unsorted) {
       for (const auto& f : frags) c = glm::vec3(f.colour) * f.colour.a + c * (1.0f - f.colour.a);
     } else if (tech == T::Wboit) {
-      glm::vec4 acc(0.0f);
-      float reveal = 1.0f;
-      for (const auto& f : frags) {
-        float w = f.colour.a * wboit_weight(st.weight, f.depth, st.near_far);
-        acc += glm::vec4(glm::vec3(f.colour) * w, w);
-        reveal *= 1.0f - f.colour.a;
-      }
-      if (!frags.empty()) {
-        glm::vec3 average = glm::vec3(acc) / (st.unguarded ? acc.a : std::clamp(acc.a, 1e-4f, 5e4f));
-        c = average * (1.0f - reveal) + bg * reveal;
-      }
+      c = wboit_pixel(frags, st, bg);
     } else {
       std::fill(s.begin(), s.end(), Node(0u));
-      for (const auto& f : frags) {
-        glm::vec4 ct(glm::vec3(f.colour) * f.colour.a, 1.0f - f.colour.a);
-        switch (tech) {
-          case T::Mlab:
-            insert_mlab(s, n, ct, f.depth);
-            break;
-          case T::Umlab:
-            insert_umlab(s, n, ct, f.depth);
-            break;
-          case T::At:
-            insert_at(s, n, ct.w, f.depth, false, st.unguarded);
-            break;
-          case T::Hat:
-            insert_at(s, n, ct.w, f.depth, true, st.unguarded);
-            break;
-          case T::Uat:
-            insert_uat(s, n, ct.w, f.depth);
-            break;
-          case T::Laat:
-            insert_laat(s, n, ct.w, f.depth);
-            break;
-          default:
-            insert_uhat(s, n, ct.w, f.depth, st.unguarded);
-            break;
-        }
-      }
-      if (tech == T::Mlab || tech == T::Umlab) {
-        std::vector<std::pair<float, glm::vec4>> nodes;
-        for (const Node& node : s) nodes.push_back({node_depth(node), mlab_value(node)});
-        if (tech == T::Umlab)  // the resolve's insertion sort: stable
-          std::stable_sort(nodes.begin(), nodes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        glm::vec3 acc(0.0f);
-        float t = 1.0f;
-        for (const auto& [z, ct] : nodes) {
-          acc += t * glm::vec3(ct);
-          t *= ct.w;
-        }
-        c = acc + t * bg;
-      } else {
-        glm::vec4 acc(0.0f);
-        for (const auto& f : frags) {
-          float w = f.colour.a * visibility(s, f.depth, relative, laat);
-          acc += glm::vec4(glm::vec3(f.colour) * w, w);
-        }
-        float total = visibility(s, kDepthEmpty, relative, laat), opacity = 1.0f - total;
-        if (!st.unguarded && acc.a > opacity * (1.0f + 1e-5f) + 1e-6f)
-          acc = glm::vec4(glm::vec3(acc) * (opacity / acc.a), acc.a);
-        c = glm::vec3(acc) + total * bg;
-      }
+      for (const auto& f : frags)
+        insert_node(tech, s, n, glm::vec4(glm::vec3(f.colour) * f.colour.a, 1.0f - f.colour.a), f.depth, st.unguarded);
+      c = tech == T::Mlab || tech == T::Umlab ? mlab_pixel(s, tech == T::Umlab, bg)
+                                              : at_pixel(frags, s, relative, laat, st.unguarded, bg);
     }
     for (int k = 0; k < 3; ++k) m.rgb[p * 3 + k] = c[k];
   }

@@ -34,7 +34,7 @@
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
 #include "oit/techniques.hpp"
-#include "shaders/oit/bindings.h"
+#include "shaders/resolve/bindings.h"
 
 namespace oitbench::oit {
 
@@ -103,8 +103,8 @@ class ExactCase final : public OitCase {
       return;
     }
     if (bma_) {
-      count_ = ctx.build({{GL_COMPUTE_SHADER, "oit/bma_count.comp"}}, lists_->defines());
-      mask_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/bma_mask.frag"}},
+      count_ = ctx.build({{GL_COMPUTE_SHADER, "resolve/bma_count.comp"}}, lists_->defines());
+      mask_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve/bma_mask.frag"}},
                         lists_->defines());
       histogram_ = gl::make_buffer();
       glNamedBufferStorage(histogram_.get(), 32 * sizeof(unsigned), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -490,7 +490,7 @@ class ExactCase final : public OitCase {
   void build_capture() {
     capture_defines_ = lists_->defines();
     capture_ = build_capture_programs(
-        *lists_, ctx_, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+        *lists_, ctx_, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
         passes_.geometry_defines());
     set_view_projection(view_proj_);
   }
@@ -559,7 +559,8 @@ class ExactCase final : public OitCase {
 
   gl::Program build_resolve(const SortChoice& sort, unsigned max_frags) {
     Defines d = resolve_defines(sort, max_frags);
-    auto prog = ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "oit/resolve.frag"}}, d);
+    auto prog =
+        ctx_.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve/resolve.frag"}}, d);
     glProgramUniform1i(prog.get(), glGetUniformLocation(prog.get(), "zero"), 0);
     return prog;
   }

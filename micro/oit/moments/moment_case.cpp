@@ -1,17 +1,7 @@
 // The oit experiment's MBOIT case (moments.hpp): a moment pass, a weighted colour pass and a
 // resolve (shaders/moments/), validated against mboit_model (moment_model.hpp).
-#include <algorithm>
-#include <glm/gtc/matrix_transform.hpp>
-#include <sstream>
-
-#include "gl/render_target.hpp"
 #include "oit/case_support.hpp"
-#include "oit/moments/moment_model.hpp"
-#include "oit/moments/moments.hpp"
-#include "oit/reference/image_compare.hpp"
-#include "oit/reference/image_io.hpp"
-#include "oit/reference/reference.hpp"
-#include "oit/scene/coverage_estimate.hpp"
+#include "oit/moments/captured_view.hpp"
 #include "shaders/moments/bindings.h"
 
 namespace oitbench::oit {
@@ -54,67 +44,12 @@ std::vector<ParamSpec> moment_params() {
   return ps;
 }
 
-CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
-  CapturedView v;
-  v.fx = std::make_unique<ScenePasses>(p, ctx);
-  v.scene = &v.fx->scene();
-  const View& view = v.fx->view();
-  const Mesh& mesh = v.fx->mesh();
-  v.mesh = &v.fx->transparent();
-  v.view_proj = v.fx->view_projection();
-  // The planes back out of the perspective matrix (glm::perspective's layout), as approx_case.cpp.
-  glm::mat4 pm = v.view_proj * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
-  v.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
-  // The paper warps the view depth between bounds of the scene, not the projection's planes (whose
-  // near plane can be far in front of the geometry): the vertices' own extent, slightly widened.
-  glm::vec3 forward = glm::normalize(view.target - view.eye);
-  float lo = 1e30f, hi = -1e30f;
-  for (const auto& vertex : mesh.vertices) {
-    float d = glm::dot(vertex.position - view.eye, forward);
-    lo = std::min(lo, d);
-    hi = std::max(hi, d);
-  }
-  lo = std::clamp(lo * 0.999f, v.near_far.x, v.near_far.y);
-  hi = std::clamp(hi * 1.001f, lo * 1.001f, v.near_far.y);
-  v.depth_range = {lo, hi};
-  size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
-  auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
-                                     capture_budget(mesh, v.view_proj, ctx, v.fx->opaque() ? 2 : 1));
-  auto capture = build_capture_programs(
-      *lists, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
-      v.fx->geometry_defines());
-  for (const auto& prog : capture) {
-    set_view_proj(prog, v.view_proj);
-    v.fx->bind_geometry(prog.get());
-  }
-  const auto referencing = ctx.phase(Phase::Reference);  // the fragments the references composite
-  v.fx->draw_opaque();
-  v.backdrop = v.fx->read_backdrop();
-  RenderTarget target(ctx.width(), ctx.height(), GL_R8);
-  target.bind();
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_BLEND);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  lists->capture(ids(capture), [&] { v.mesh->draw(); });
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  v.fragments = visible_fragments(lists->read_back(), v.backdrop, v.hidden);
-  return v;
-}
-
 namespace {
 
-class MboitCase final : public OitCase {
+class MboitCase final : public CapturedViewCase {
  public:
   MboitCase(const ParamSet& p, CaseContext& ctx)
-      : width_(ctx.width()),
-        height_(ctx.height()),
-        view_(capture_view(p, ctx)),
-        out_(ctx.width(), ctx.height(), GL_RGBA32F),
-        accum_(ctx.width(), ctx.height(), GL_RGBA32F),
-        flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
-        dump_(ctx.image_stem()) {
-    phases_ = ctx.phase_clock();
+      : CapturedViewCase(p, ctx), accum_(ctx.width(), ctx.height(), GL_RGBA32F) {
     s_.kind = p.get("moment_kind") == "trigonometric" ? MomentKind::Trigonometric : MomentKind::Power;
     s_.moments = static_cast<int>(p.get_int("moments"));
     s_.bits = static_cast<int>(p.get_int("moment_bits"));
@@ -148,8 +83,8 @@ class MboitCase final : public OitCase {
     for (auto& x : view_.fx->depth_sampler_defines()) d.push_back(x);
     d.push_back({"MOMENT_COUNT", std::to_string(s_.moments)});
     if (s_.kind == MomentKind::Trigonometric) d.push_back({"MOMENT_TRIGONOMETRIC", ""});
-    moment_pass_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "moments/moments.frag"}}, d);
-    blend_pass_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "moments/blend.frag"}}, d);
+    moment_pass_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "moments/moments.frag"}}, d);
+    blend_pass_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "moments/blend.frag"}}, d);
     resolve_ =
         ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "moments/resolve.frag"}}, d);
     for (const gl::Program* prog : {&moment_pass_, &blend_pass_}) {
@@ -166,16 +101,9 @@ class MboitCase final : public OitCase {
     view_.fx->set_view_projection(view_proj);
     for (const gl::Program* prog : {&moment_pass_, &blend_pass_}) set_view_proj(*prog, view_proj);
   }
-  GLuint result_texture() override { return out_.color_texture(); }
-  GLuint opaque_texture() const override { return view_.fx->opaque_texture(); }
-  std::map<std::string, std::string> resolved_params() const override { return view_.fx->resolved_params(); }
 
   void run(PassTimer& timer) override {
-    view_.fx->run_before(timer);
-    if (!view_.fx->transparency()) {  // nothing transparent: the image is the backdrop
-      view_.fx->fill_with_backdrop(out_.framebuffer(), out_.color_texture());
-      return;
-    }
+    if (!begin_run(timer)) return;
     for (const gl::Program* prog : {&moment_pass_, &blend_pass_}) view_.fx->bind_geometry(prog->get());
     view_.fx->bind_opaque_depth_sampler();
     glDisable(GL_DEPTH_TEST);
@@ -212,91 +140,47 @@ class MboitCase final : public OitCase {
       glUseProgram(resolve_.get());
       quad_.draw();
     }
-    if (flicker_runs_ > 0) {  // outside the timed passes: the frames the flicker metric compares
-      frames_.push_back(rgb_of(out_.read_rgba32f()));
-      if (static_cast<int>(frames_.size()) > flicker_runs_) frames_.erase(frames_.begin());
-    }
+    keep_frame();
   }
 
   Validation validate() override {
-    Validation v;
-    auto& m = v.metrics;
-    auto reading = PhaseClock::Scope(phases_, Phase::Readback);
-    std::vector<float> rgb = rgb_of(out_.read_rgba32f());
-    reading.end();
-    const HostLists& host = view_.fragments;
-    ListStats stats = list_stats(host);
-    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    auto ref = composite_reference(host, view_.backdrop);
     size_t rebiased = 0;
-    std::vector<double> model = mboit_model(host, view_.backdrop, s_, &rebiased);
+    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
+    std::vector<double> model = mboit_model(view_.fragments, view_.backdrop, s_, &rebiased);
     referencing.end();
-    ApproxError err = approx_error(rgb, ref);
-    m["total_fragments"] = std::to_string(stats.total_fragments);
-    m["peak_depth"] = std::to_string(stats.peak_depth);
-    m["mean_depth"] = fmt(stats.mean_depth);
-    m["polygons"] = std::to_string(view_.fx->mesh().polygons());
-    if (view_.fx->opaque()) m["hidden_fragments"] = std::to_string(view_.hidden);
-    m["rmse"] = fmt(err.rmse);
-    m["psnr"] = fmt(err.psnr);
-    m["max_abs_error"] = fmt(err.max_abs_error);
-    m["frac_pixels_off"] = fmt(err.frac_pixels_off);
-    m["model_rmse"] = fmt(approx_error(std::vector<float>(model.begin(), model.end()), ref).rmse);
+    ModelValidation mv = validate_against(model, kMomentTolerance);
+    auto& m = mv.v.metrics;
+    const size_t total = mv.stats.total_fragments;
     m["moment_bias"] = fmt(s_.bias);
-    m["moment_rebiased"] = fmt(stats.total_fragments ? static_cast<double>(rebiased) / stats.total_fragments : 0.0);
-    m["bytes_per_pixel"] = std::to_string(bytes_);
-    ModelCheck check = check_against_model(rgb, model, width_, kMomentTolerance);
-    m["nonfinite"] = std::to_string(check.nonfinite);
-    m["model_max_diff"] = fmt(check.max_diff);
-    m["model_off_channels"] = std::to_string(check.off);
-    if (frames_.size() >= 2) {
-      Flicker f = flicker_of(frames_);
-      m["flicker"] = fmt(f.mean);
-      m["flicker_max"] = fmt(f.peak);
-      m["flicker_pixels"] = std::to_string(f.changed);
-    }
-    if (!dump_.empty()) write_result_images(dump_, rgb, ref, width_, height_);
-
-    std::vector<std::string> problems;
-    merge_shadow_check(m, problems, view_.fx->validate_shadow());
-    if (!stats.error.empty()) problems.push_back(stats.error);
-    if (check.nonfinite)
-      problems.push_back(std::to_string(check.nonfinite) + " non-finite channel value(s) (NaN or Inf)");
-    if (check.out_of_range) problems.push_back(std::to_string(check.out_of_range) + " channel value(s) outside [0, 1]");
+    m["moment_rebiased"] = fmt(total ? static_cast<double>(rebiased) / total : 0.0);
+    m["model_off_channels"] = std::to_string(mv.check.off);
+    add_output_problems(mv);
     // The moment systems are ill-conditioned by design (the bias keeps them just positive
     // definite): where a pixel's moments sit at that edge the GPU's float solve and the model's
     // double one can part by more than the tolerance (measured: 0.3% of the channels of smoke with
     // 4 power moments in 32 bits), and with 16-bit sums they can disagree on raising the bias. Up
     // to 1% of the channels may differ; the wrong-result fault changes 12.5% of the pixels.
-    const size_t allowed = rgb.size() / 100;
-    if (check.off > allowed)
-      problems.push_back(std::to_string(check.off) +
-                         " channel value(s) differ from MBOIT's CPU model by more than 4/255 (" +
-                         std::to_string(allowed) + " allowed); first: " + check.first_off);
-    conclude(v, problems);
-    return v;
+    const size_t allowed = mv.rgb.size() / 100;
+    if (mv.check.off > allowed)
+      mv.problems.push_back(std::to_string(mv.check.off) +
+                            " channel value(s) differ from MBOIT's CPU model by more than 4/255 (" +
+                            std::to_string(allowed) + " allowed); first: " + mv.check.first_off);
+    conclude(mv.v, mv.problems);
+    return mv.v;
   }
 
  private:
-  PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
-  // The colour behind the transparent layers, in one place (the opaque effect will replace it).
+  // The moment targets at their texture units, for the blend pass and the resolve.
   void bind_moments() const {
     for (size_t i = 0; i < targets_.size(); ++i)
       glBindTextureUnit(MOMENTS_B0_UNIT + static_cast<GLuint>(i), targets_[i].get());
   }
 
-  int width_, height_;
-  CapturedView view_;
   MboitSettings s_;
-  RenderTarget out_, accum_;
-  FullscreenTriangle quad_;
+  RenderTarget accum_;
   gl::Framebuffer moments_fbo_;
   std::vector<gl::Texture> targets_;
   gl::Program moment_pass_, blend_pass_, resolve_;
-  int bytes_ = 0;
-  int flicker_runs_;
-  std::string dump_;
-  std::vector<std::vector<float>> frames_;
 };
 
 }  // namespace

@@ -21,24 +21,6 @@ constexpr double kWrappingZone = 0.1 * kPi;
 constexpr int kRootIterations = 200;
 constexpr int kRebiasSteps = 3;  // moment_math.glsl's REBIAS_STEPS
 
-glm::vec4 unpack_colour(unsigned c) {
-  return {static_cast<float>(c & 0xffu) / 255.0f, static_cast<float>((c >> 8) & 0xffu) / 255.0f,
-          static_cast<float>((c >> 16) & 0xffu) / 255.0f, static_cast<float>(c >> 24) / 255.0f};
-}
-
-struct Frag {
-  glm::vec4 colour;
-  float depth;
-};
-
-// One pixel's fragments in arrival order (the linked list prepends: its reverse), as approx_model.cpp.
-void arrival_order(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
-  out.clear();
-  for (unsigned i = l.heads[pixel]; i != kListEnd && i < l.nodes.size() && out.size() <= l.nodes.size(); i = l.next[i])
-    out.push_back({unpack_colour(l.nodes[i].x), std::bit_cast<float>(l.nodes[i].y)});
-  std::reverse(out.begin(), out.end());
-}
-
 double absorbance_of(double alpha) {
   return alpha >= 1.0 ? kAbsorbanceMax : std::min(-std::log(1.0 - alpha), kAbsorbanceMax);
 }
@@ -197,7 +179,7 @@ std::vector<double> mboit_model(const HostLists& l, const Backdrop& bg, const Mb
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<size_t> raised_count(threads, 0);
   auto rows = [&](unsigned part) {
-    std::vector<Frag> frags;
+    std::vector<ArrivedFragment> frags;
     std::vector<double> contribution(n), raw(n);
     std::vector<float> sums(n);
     for (size_t px = part; px < pixels; px += threads) {
@@ -273,7 +255,7 @@ std::vector<double> stochastic_model(const std::vector<CoverageFragment>& fragme
     if (f.pixel < pixels) by_pixel[f.pixel].push_back(&f);
   std::vector<double> out(pixels * 3);
   std::vector<float> depth(S);
-  std::vector<Frag> frags;
+  std::vector<ArrivedFragment> frags;
   for (size_t px = 0; px < pixels; ++px) {
     const uint32_t x = static_cast<uint32_t>(px % s.width), y = static_cast<uint32_t>(px / s.width);
     glm::dvec4 acc(0.0);
@@ -285,7 +267,7 @@ std::vector<double> stochastic_model(const std::vector<CoverageFragment>& fragme
           if ((mask >> k & 1u) && f->depth < depth[k]) depth[k] = f->depth;
       }
       for (const auto* f : by_pixel[px]) {
-        glm::dvec4 c(unpack_colour(f->colour));
+        glm::dvec4 c(unpack_rgba8(f->colour));
         for (int k = 0; k < S; ++k)
           if ((f->coverage >> k & 1u) && f->depth <= depth[k]) acc += glm::dvec4(glm::dvec3(c) * c.a, c.a);
       }

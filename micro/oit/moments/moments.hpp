@@ -45,23 +45,6 @@ float mboit_paper_bias(MomentKind kind, int moments, int bits);
 // The parameters MBOIT and STOCHASTIC add to the oit experiment, each scoped to its technique.
 std::vector<ParamSpec> moment_params();
 
-// What both cases start from: the scene's mesh for the view, its camera, and the view's fragments
-// captured once (PPLL) for the exact reference and the CPU models.
-struct CapturedView {
-  // The scene's effects (scene_passes.hpp): the opaque pass, the shading, the backdrop; these
-  // techniques test the opaque depth in their shaders (opaque_hides, depth_sampler_defines()).
-  std::unique_ptr<ScenePasses> fx;
-  const SceneDesc* scene = nullptr;
-  const GpuMesh* mesh = nullptr;  // fx's transparent primitives
-  Backdrop backdrop;              // the opaque colour and depth, read back for the references
-  size_t hidden = 0;              // transparent fragments the CPU hid behind the opaque depth
-  glm::mat4 view_proj{1.0f};
-  glm::vec2 near_far{0.1f, 10.f};
-  glm::vec2 depth_range{0.1f, 10.f};  // nearest and farthest vertex along the view direction
-  HostLists fragments;                // the visible ones (with the opaque effect, hidden by the CPU)
-};
-CapturedView capture_view(const ParamSet& p, CaseContext& ctx);
-
 std::unique_ptr<OitCase> make_mboit_case(const ParamSet& p, CaseContext& ctx);
 std::unique_ptr<OitCase> make_stochastic_case(const ParamSet& p, CaseContext& ctx);
 

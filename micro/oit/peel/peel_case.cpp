@@ -134,7 +134,7 @@ class PeelCase final : public OitCase {
       auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
                                          capture_budget(fx_.mesh(), vp, ctx, fx_.opaque() ? 2 : 1));
       auto capture = build_capture_programs(
-          *lists, ctx, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/capture.frag"}},
+          *lists, ctx, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
           fx_.geometry_defines());
       for (const auto& prog : capture) {
         set_view_proj(prog, vp);
@@ -154,7 +154,7 @@ class PeelCase final : public OitCase {
     for (auto& x : fx_.depth_sampler_defines()) d.push_back(x);
     if (settings_.dual) d.push_back({"DUAL", ""});
     if (settings_.depth_only) d.push_back({"TIE_RULE_DEPTH", ""});
-    peel_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "peel/peel.frag"}}, d);
+    peel_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "peel/peel.frag"}}, d);
     set_view_proj(peel_, vp);
     resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "peel/resolve.frag"}}, d);
     pass_uniform_ = glGetUniformLocation(peel_.get(), "peelPass");

@@ -215,4 +215,17 @@ void resolve_native(const HostLists& l, const Backdrop& backdrop, int threads, b
   for (auto& th : pool) th.join();
 }
 
+glm::vec4 unpack_rgba8(unsigned c) {
+  auto unorm8 = [c](int k) { return static_cast<float>((c >> (8 * k)) & 0xffu) / 255.0f; };
+  return {unorm8(0), unorm8(1), unorm8(2), unorm8(3)};
+}
+
+void arrival_order(const HostLists& lists, size_t pixel, std::vector<ArrivedFragment>& out) {
+  out.clear();
+  for (unsigned i = lists.heads[pixel]; i != kListEnd && i < lists.nodes.size() && out.size() <= lists.nodes.size();
+       i = lists.next[i])
+    out.push_back({unpack_rgba8(lists.nodes[i].x), std::bit_cast<float>(lists.nodes[i].y)});
+  std::reverse(out.begin(), out.end());
+}
+
 }  // namespace oitbench::oit

@@ -61,4 +61,14 @@ std::vector<double> composite_reference(const HostLists& lists, const Backdrop& 
 void resolve_native(const HostLists& lists, const Backdrop& backdrop, int threads, bool perturb,
                     std::vector<float>& out);
 
+// A captured fragment as the CPU models of the approximate, moment and stochastic techniques read it:
+// its RGBA8 colour unpacked to floats and its depth as captured.
+struct ArrivedFragment {
+  glm::vec4 colour;
+  float depth;
+};
+glm::vec4 unpack_rgba8(unsigned c);
+// One pixel's fragments of RGBA8 lists in the order they arrived (the linked list prepends: its reverse).
+void arrival_order(const HostLists& lists, size_t pixel, std::vector<ArrivedFragment>& out);
+
 }  // namespace oitbench::oit

@@ -9,7 +9,7 @@ ComputeResolve::ComputeResolve(const CaseContext& ctx, Defines defines, glm::vec
     : group_x_(group_x), group_y_(group_y) {
   defines.push_back({"CS_GROUP_X", std::to_string(group_x)});
   defines.push_back({"CS_GROUP_Y", std::to_string(group_y)});
-  program_ = ctx.build({{GL_COMPUTE_SHADER, "oit/resolve.comp"}}, defines);
+  program_ = ctx.build({{GL_COMPUTE_SHADER, "resolve/resolve.comp"}}, defines);
   glProgramUniform3f(program_.get(), glGetUniformLocation(program_.get(), "background"), background.r, background.g,
                      background.b);
   glProgramUniform1i(program_.get(), glGetUniformLocation(program_.get(), "zero"), 0);

@@ -1,6 +1,6 @@
 #pragma once
 // The exact-OIT resolve as a compute pass (CS-IS, CS-IMS, CS-RBS-L: the GLSL-compute stand-in for
-// Knowles 2014's CUDA rows): shaders/oit/resolve.comp, one invocation per pixel in groups of
+// Knowles 2014's CUDA rows): shaders/resolve/resolve.comp, one invocation per pixel in groups of
 // group_x x group_y, storing the composited colour straight into the target's colour texture in
 // the fragment-shader resolve's convention (rgb over the background, alpha 1 where resolved).
 #include <glm/glm.hpp>
@@ -9,7 +9,7 @@
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
 #include "oit/capture/fragment_storage.hpp"
-#include "shaders/oit/bindings.h"
+#include "shaders/resolve/bindings.h"
 
 namespace oitbench::oit {
 

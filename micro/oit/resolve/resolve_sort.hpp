@@ -1,5 +1,5 @@
 #pragma once
-// Which sort an exact-OIT resolve runs (shaders/oit/resolve_pixel.glsl), from the technique's
+// Which sort an exact-OIT resolve runs (shaders/resolve/resolve_pixel.glsl), from the technique's
 // suffix (BASE-IS, CS-RBS-L, RBS-G, ...), the defines that select and size it, and the files of
 // the sort library (shaders/sorts/) it compiles.
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
 // A scene mesh on the GPU: one interleaved vertex buffer (oit::Vertex), index buffers in submission
 // order (triangles, then line segments), and the vertex array that describes them for
-// shaders/oit/capture.vert.
+// shaders/scene/scene.vert.
 #include <vector>
 
 #include "gl/gl_objects.hpp"
@@ -10,7 +10,7 @@
 namespace oitbench::oit {
 
 // Describes oit::Vertex records in `vertices` (binding 0) to `vao` at the locations
-// shaders/oit/capture.vert reads: the one place that layout is written.
+// shaders/scene/scene.vert reads: the one place that layout is written.
 void bind_vertex_layout(GLuint vao, GLuint vertices);
 
 class GpuMesh {

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "shaders/oit/effects.h"
+#include "shaders/scene/bindings.h"
 
 namespace oitbench::oit {
 
@@ -122,7 +122,7 @@ ScenePasses::ScenePasses(const ParamSet& p, CaseContext& ctx)
   view_proj_ = oit::view_projection(view_, geometry_->mesh, static_cast<float>(width_) / height_);
   if (opaque) {
     opaque_ = std::make_unique<Opaque>();
-    opaque_->program = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "oit/opaque.frag"}},
+    opaque_->program = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "scene/opaque.frag"}},
                                  geometry_defines());
     opaque_->fbo = gl::make_framebuffer();
     opaque_->colour = gl::make_texture(GL_TEXTURE_2D);

@@ -5,7 +5,7 @@
 //   opaque          pass "opaque": the opaque primitives into colour and depth; the technique's
 //                   geometry passes then test the transparent fragments against that depth
 //                   (early fragment tests: a hidden fragment is never stored) and composite over
-//                   that colour (shaders/oit/backdrop.glsl)
+//                   that colour (shaders/scene/backdrop.glsl)
 //   transparency    the technique's own passes (capture, resolve, ...); without it none run
 //   self-shadowing  the shadow map's passes (micro/oit/scene/shadow_map.hpp)
 // Without the opaque effect, opaque materials are captured like glass at alpha 1.
@@ -72,9 +72,9 @@ class ScenePasses {
   // The opaque pass's draw alone, untimed (a case's prepare: its reference capture needs the depth).
   void draw_opaque();
 
-  // For every technique's shaders (shaders/oit/backdrop.glsl): OPAQUE_BACKDROP with the opaque effect.
+  // For every technique's shaders (shaders/scene/backdrop.glsl): OPAQUE_BACKDROP with the opaque effect.
   Defines defines() const;
-  // For the programs that shade scene fragments (shaders/oit/shade.glsl): SELF_SHADOWING with
+  // For the programs that shade scene fragments (shaders/scene/shade.glsl): SELF_SHADOWING with
   // the self-shadowing effect, plus defines().
   Defines geometry_defines() const;
   // Before a geometry pass: the shadow map and its lookup's uniforms for `program` (a program
@@ -88,7 +88,7 @@ class ScenePasses {
   // OPAQUE_DEPTH_SAMPLER (with the opaque effect): added to geometry_defines() by a technique whose
   // shaders call opaque_hides() (it cannot use the opaque depth buffer's own test).
   Defines depth_sampler_defines() const;
-  // Sets `background` and binds the opaque colour at its unit (effects.h).
+  // Sets `background` and binds the opaque colour at its unit (shaders/scene/bindings.h).
   void bind_backdrop(GLuint program) const;
   // Binds the opaque depth for opaque_hides() (never while it is attached to the bound framebuffer).
   void bind_opaque_depth_sampler() const;

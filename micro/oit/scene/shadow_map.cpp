@@ -12,6 +12,7 @@
 #include "oit/capture/fragment_lists.hpp"
 #include "oit/case_support.hpp"
 #include "oit/scene/gpu_mesh.hpp"
+#include "shaders/lines/bindings.h"
 #include "shaders/shadow/bindings.h"
 
 namespace oitbench::oit {
@@ -119,7 +120,7 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
     sets_.push_back(std::move(set));
   }
 
-  vao_ = gl::make_vertex_array();  // for shaders/oit/capture.vert
+  vao_ = gl::make_vertex_array();  // for shaders/scene/scene.vert
   bind_vertex_layout(vao_.get(), vertices_.get());
 
   map_ = gl::make_texture(GL_TEXTURE_3D);
@@ -129,7 +130,7 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
   for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
     glTextureParameteri(map_.get(), wrap, GL_CLAMP_TO_EDGE);
   fbo_ = gl::make_framebuffer();
-  accumulate_ = ctx.build({{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "shadow/accumulate.frag"}}, {});
+  accumulate_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "shadow/accumulate.frag"}}, {});
   glProgramUniformMatrix4fv(accumulate_.get(), glGetUniformLocation(accumulate_.get(), "viewProj"), 1, GL_FALSE,
                             &light_view_proj_[0][0]);
   prefix_ = ctx.build({{GL_COMPUTE_SHADER, "shadow/prefix_layers.comp"}}, {});
@@ -159,10 +160,10 @@ void OpacityShadowMap::build() {
 
 void OpacityShadowMap::sort_primitives(PrimitiveSet& set) {
   const GLuint count = static_cast<GLuint>(set.count), groups = (count + 255) / 256;
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, set.keys0.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, set.index0.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, set.indices.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_VERTICES_BINDING, vertices_.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_KEYS_BINDING, set.keys0.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_INDICES_BINDING, set.index0.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_PRIMITIVES_BINDING, set.indices.get());
   glUseProgram(set.keys_prog.get());
   glUniform1ui(glGetUniformLocation(set.keys_prog.get(), "segments"), count);
   glDispatchCompute(groups, 1, 1);
@@ -170,12 +171,12 @@ void OpacityShadowMap::sort_primitives(PrimitiveSet& set) {
   for (int bit = 0; bit < bits_; ++bit) {  // the lines experiment's rounds (micro/experiments/lines.cpp)
     const gl::Buffer& kin = bit == 0 ? set.keys0 : set.keys[(bit + 1) % 2];
     const gl::Buffer& iin = bit == 0 ? set.index0 : set.index[(bit + 1) % 2];
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, kin.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, iin.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, set.keys[bit % 2].get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, set.index[bit % 2].get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, set.local.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, set.blocks.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_KEYS_IN_BINDING, kin.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_INDICES_IN_BINDING, iin.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_KEYS_OUT_BINDING, set.keys[bit % 2].get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_INDICES_OUT_BINDING, set.index[bit % 2].get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_LOCAL_BINDING, set.local.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_BLOCKS_BINDING, set.blocks.get());
     for (size_t phase = 0; phase < set.split.size(); ++phase) {
       glUseProgram(set.split[phase].get());
       glUniform1ui(glGetUniformLocation(set.split[phase].get(), "count"), count);
@@ -184,18 +185,18 @@ void OpacityShadowMap::sort_primitives(PrimitiveSet& set) {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, set.sorted_index(bits_).get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, set.elements.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, set.indices.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_SORTED_BINDING, set.sorted_index(bits_).get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_ELEMENTS_BINDING, set.elements.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_PRIMITIVES_BINDING, set.indices.get());
   glUseProgram(set.emit.get());
   glUniform1ui(glGetUniformLocation(set.emit.get(), "segments"), count);
   glDispatchCompute(groups, 1, 1);
   // Each slice's range of the sorted elements as an indirect draw.
   const GLuint zero = 0;
   glClearNamedBufferData(set.bounds.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, set.sorted_keys(bits_).get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, set.bounds.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, set.commands.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_RANGES_SORTED_KEYS_BINDING, set.sorted_keys(bits_).get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_RANGES_BOUNDS_BINDING, set.bounds.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_RANGES_COMMANDS_BINDING, set.commands.get());
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   glUseProgram(set.bounds_prog.get());
   glUniform1ui(glGetUniformLocation(set.bounds_prog.get(), "count"), count);
@@ -253,7 +254,7 @@ OpacityShadowMap::LightFragments& OpacityShadowMap::light_fragments() {
   RenderTarget target(resolution_, resolution_, GL_RGBA8);
   FragmentLists lists(resolution_, resolution_, static_cast<size_t>(resolution_) * resolution_ * 8, false);
   auto programs = build_capture_programs(
-      lists, ctx_, {{GL_VERTEX_SHADER, "oit/capture.vert"}, {GL_FRAGMENT_SHADER, "shadow/light_capture.frag"}});
+      lists, ctx_, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "shadow/light_capture.frag"}});
   for (const auto& p : programs)
     glProgramUniformMatrix4fv(p.get(), glGetUniformLocation(p.get(), "viewProj"), 1, GL_FALSE, &light_view_proj_[0][0]);
   target.bind();

@@ -8,7 +8,7 @@
 //                adding optical depth -log(1 - alpha) (Kim & Neumann 2001), then a prefix over the
 //                layers: layer k holds what lies in front of slice k
 // Any fragment shader built with defines() and bound with bind() reads it through
-// shaders/shadow/transmittance.glsl (shaders/oit/shade.glsl applies it and the ambient floor).
+// shaders/shadow/transmittance.glsl (shaders/scene/shade.glsl applies it and the ambient floor).
 // validate() checks it on the CPU: the sort against a stable CPU sort, the map against the CPU's
 // own map from the same slices (every fragment seen from the light, captured once, untimed), and
 // measures its error against the exact deep shadow map (every light fragment sorted, composited).
@@ -91,7 +91,7 @@ class OpacityShadowMap {
 // nullptr: a scene without it runs no shadow pass and its rows have no shadow columns.
 std::unique_ptr<OpacityShadowMap> make_self_shadowing(const CaseContext& ctx, const SceneDesc& scene, const Mesh& mesh,
                                                       const ParamSet& p);
-// What a program that shades scene fragments (shaders/oit/shade.glsl) is built with.
+// What a program that shades scene fragments (shaders/scene/shade.glsl) is built with.
 inline Defines shading_defines(const std::unique_ptr<OpacityShadowMap>& shadow) {
   return shadow ? OpacityShadowMap::defines() : Defines{};
 }

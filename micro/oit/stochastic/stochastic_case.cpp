@@ -3,15 +3,9 @@
 // draws the same masks from the same hash for the fragments' recorded MSAA coverage.
 #include <algorithm>
 #include <bit>
-#include <sstream>
 
-#include "gl/render_target.hpp"
 #include "oit/case_support.hpp"
-#include "oit/moments/moment_model.hpp"
-#include "oit/moments/moments.hpp"
-#include "oit/reference/image_compare.hpp"
-#include "oit/reference/image_io.hpp"
-#include "oit/reference/reference.hpp"
+#include "oit/moments/captured_view.hpp"
 #include "shaders/stochastic/bindings.h"
 
 namespace oitbench::oit {
@@ -29,18 +23,10 @@ std::vector<GLint> sample_counts(GLenum format) {
   return counts;
 }
 
-class StochasticCase final : public OitCase {
+class StochasticCase final : public CapturedViewCase {
  public:
   StochasticCase(const ParamSet& p, CaseContext& ctx)
-      : width_(ctx.width()),
-        height_(ctx.height()),
-        run_seed_(ctx.seed()),
-        view_(capture_view(p, ctx)),
-        out_(ctx.width(), ctx.height(), GL_RGBA32F),
-        total_(ctx.width(), ctx.height(), GL_R32F),
-        flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
-        dump_(ctx.image_stem()) {
-    phases_ = ctx.phase_clock();
+      : CapturedViewCase(p, ctx), run_seed_(ctx.seed()), total_(ctx.width(), ctx.height(), GL_R32F) {
     const int samples = static_cast<int>(p.get_int("samples_per_pixel"));
     // The most MSAA samples the driver renders RGBA32F and 32-bit float depth with that divide the
     // count; the rest comes from further passes (Enderton et al.: more passes, more samples).
@@ -71,7 +57,7 @@ class StochasticCase final : public OitCase {
     for (auto& x : view_.fx->depth_sampler_defines()) d.push_back(x);
     d.push_back({"MSAA_SAMPLES", std::to_string(best)});
     d.push_back({"STOCHASTIC_PASSES", std::to_string(setup_.passes)});
-    const std::string vert = "oit/capture.vert";
+    const std::string vert = "scene/scene.vert";
     coverage_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/coverage.frag"}}, d);
     depth_pass_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/depth.frag"}}, d);
     accumulate_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/accumulate.frag"}}, d);
@@ -86,16 +72,9 @@ class StochasticCase final : public OitCase {
     view_.fx->set_view_projection(view_proj);
     for (const gl::Program* prog : {&coverage_, &depth_pass_, &accumulate_, &alpha_}) set_view_proj(*prog, view_proj);
   }
-  GLuint result_texture() override { return out_.color_texture(); }
-  GLuint opaque_texture() const override { return view_.fx->opaque_texture(); }
-  std::map<std::string, std::string> resolved_params() const override { return view_.fx->resolved_params(); }
 
   void run(PassTimer& timer) override {
-    view_.fx->run_before(timer);
-    if (!view_.fx->transparency()) {  // nothing transparent: the image is the backdrop
-      view_.fx->fill_with_backdrop(out_.framebuffer(), out_.color_texture());
-      return;
-    }
+    if (!begin_run(timer)) return;
     for (const gl::Program* prog : {&depth_pass_, &accumulate_, &alpha_}) view_.fx->bind_geometry(prog->get());
     view_.fx->bind_opaque_depth_sampler();
     setup_.frame_seed = stochastic_frame_seed(run_seed_, frame_++);
@@ -153,68 +132,27 @@ class StochasticCase final : public OitCase {
       glUseProgram(resolve_.get());
       quad_.draw();
     }
-    if (flicker_runs_ > 0) {  // outside the timed passes: the frames the flicker metric compares
-      frames_.push_back(rgb_of(out_.read_rgba32f()));
-      if (static_cast<int>(frames_.size()) > flicker_runs_) frames_.erase(frames_.begin());
-    }
+    keep_frame();
   }
 
   Validation validate() override {
-    Validation v;
-    auto& m = v.metrics;
-    auto reading = PhaseClock::Scope(phases_, Phase::Readback);
-    std::vector<float> rgb = rgb_of(out_.read_rgba32f());
-    reading.end();
-    const HostLists& host = view_.fragments;
-    ListStats stats = list_stats(host);
     auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    auto ref = composite_reference(host, view_.backdrop);
-    std::vector<double> model = stochastic_model(coverage_fragments_, host, view_.backdrop, setup_);
+    std::vector<double> model = stochastic_model(coverage_fragments_, view_.fragments, view_.backdrop, setup_);
     referencing.end();
-    ApproxError err = approx_error(rgb, ref);
-    m["total_fragments"] = std::to_string(stats.total_fragments);
-    m["peak_depth"] = std::to_string(stats.peak_depth);
-    m["mean_depth"] = fmt(stats.mean_depth);
-    m["polygons"] = std::to_string(view_.fx->mesh().polygons());
-    if (view_.fx->opaque()) m["hidden_fragments"] = std::to_string(view_.hidden);
-    m["rmse"] = fmt(err.rmse);
-    m["psnr"] = fmt(err.psnr);
-    m["max_abs_error"] = fmt(err.max_abs_error);
-    m["frac_pixels_off"] = fmt(err.frac_pixels_off);
-    m["model_rmse"] = fmt(approx_error(std::vector<float>(model.begin(), model.end()), ref).rmse);
-    m["bytes_per_pixel"] = std::to_string(bytes_);
-    m["msaa_samples"] = std::to_string(setup_.msaa_samples);
-    ModelCheck check = check_against_model(rgb, model, width_, kStochasticTolerance);
-    m["nonfinite"] = std::to_string(check.nonfinite);
-    m["model_max_diff"] = fmt(check.max_diff);
-    if (frames_.size() >= 2) {
-      Flicker f = flicker_of(frames_);
-      m["flicker"] = fmt(f.mean);
-      m["flicker_max"] = fmt(f.peak);
-      m["flicker_pixels"] = std::to_string(f.changed);
-    }
-    if (!dump_.empty()) write_result_images(dump_, rgb, ref, width_, height_);
-
-    std::vector<std::string> problems;
-    merge_shadow_check(m, problems, view_.fx->validate_shadow());
-    if (!stats.error.empty()) problems.push_back(stats.error);
-    if (coverage_lost_) problems.push_back("the MSAA coverage record lost fragments");
-    if (check.nonfinite)
-      problems.push_back(std::to_string(check.nonfinite) + " non-finite channel value(s) (NaN or Inf)");
-    if (check.out_of_range) problems.push_back(std::to_string(check.out_of_range) + " channel value(s) outside [0, 1]");
-    if (check.off)
-      problems.push_back(std::to_string(check.off) +
-                         " channel value(s) differ from STOCHASTIC's CPU model (same masks) by more than 2/255; "
-                         "first: " +
-                         check.first_off);
-    conclude(v, problems);
-    return v;
+    ModelValidation mv = validate_against(model, kStochasticTolerance);
+    mv.v.metrics["msaa_samples"] = std::to_string(setup_.msaa_samples);
+    if (coverage_lost_) mv.problems.push_back("the MSAA coverage record lost fragments");
+    add_output_problems(mv);
+    if (mv.check.off)
+      mv.problems.push_back(std::to_string(mv.check.off) +
+                            " channel value(s) differ from STOCHASTIC's CPU model (same masks) by more than 2/255; "
+                            "first: " +
+                            mv.check.first_off);
+    conclude(mv.v, mv.problems);
+    return mv.v;
   }
 
  private:
-  PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
-  // The colour behind the transparent layers, in one place (the opaque effect will replace it).
-
   // Every fragment's MSAA coverage, once: counted, then recorded into a buffer of that size.
   void record_coverage() {
     const GLuint words = STOCHASTIC_CAPTURE_WORDS;
@@ -260,11 +198,8 @@ class StochasticCase final : public OitCase {
     coverage_lost_ = true;
   }
 
-  int width_, height_;
   uint32_t run_seed_;
-  CapturedView view_;
-  RenderTarget out_, total_;
-  FullscreenTriangle quad_;
+  RenderTarget total_;
   gl::Texture colour_, depth_;
   gl::Framebuffer msaa_;
   gl::Program coverage_, depth_pass_, accumulate_, alpha_, resolve_;
@@ -272,10 +207,6 @@ class StochasticCase final : public OitCase {
   std::vector<CoverageFragment> coverage_fragments_;
   bool coverage_lost_ = false;
   uint32_t frame_ = 0;
-  int bytes_ = 0;
-  int flicker_runs_;
-  std::string dump_;
-  std::vector<std::vector<float>> frames_;
 };
 
 }  // namespace

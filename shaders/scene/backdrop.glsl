@@ -7,7 +7,7 @@
 //                                 cannot use the opaque depth buffer's early depth test; it needs
 //                                 OPAQUE_DEPTH_SAMPLER (ScenePasses::depth_sampler_defines) and must
 //                                 not run where that depth is attached to the framebuffer
-#include "effects.h"
+#include "bindings.h"
 uniform vec3 background;
 #ifdef OPAQUE_BACKDROP
 layout(binding = OIT_BACKDROP_UNIT) uniform sampler2D opaqueColour;

@@ -1,5 +1,5 @@
 // Fragment capture: transforms the scene mesh (micro/oit/scene/gpu_mesh.cpp's vertex layout); vWorld is
-// the world position the shading (shaders/oit/shade.glsl) needs.
+// the world position the shading (shaders/scene/shade.glsl) needs.
 #include "../common/oitbench.glsl"
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec4 colour;

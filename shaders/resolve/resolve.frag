@@ -13,7 +13,7 @@
 // images and may discard), and every interval pass would cost a full-screen resolve.
 layout(early_fragment_tests) in;
 
-#include "backdrop.glsl"
+#include "../scene/backdrop.glsl"
 vec3 backdrop;  // behind this pixel's layers: resolve_pixel() blends onto it
 uniform int zero;  // always 0 (fault hooks)
 layout(location = 0) out vec4 fragColour;

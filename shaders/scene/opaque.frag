@@ -1,7 +1,7 @@
 // The opaque effect's pass: the scene's opaque primitives drawn with an ordinary depth test into
 // colour and depth (micro/oit/scene/scene_passes.cpp), shaded like every scene fragment (shade.glsl:
 // self-shadowed where the scene has the effect). The transparent fragments are then captured
-// against this depth and composited over this colour (shaders/oit/backdrop.glsl).
+// against this depth and composited over this colour (shaders/scene/backdrop.glsl).
 #include "../common/oitbench.glsl"
 #include "shade.glsl"
 in vec4 vColour;

@@ -12,7 +12,7 @@
 
 layout(local_size_x = CS_GROUP_X, local_size_y = CS_GROUP_Y) in;
 layout(binding = OIT_RESOLVED_IMAGE_UNIT, rgba32f) uniform writeonly image2D resolved;
-#include "backdrop.glsl"
+#include "../scene/backdrop.glsl"
 vec3 backdrop;  // behind this pixel's layers: resolve_pixel() blends onto it
 uniform int zero;  // always 0 (fault hooks)
 

@@ -2,8 +2,8 @@
 // Early fragment tests keep the atomics of fragments an opaque depth test would reject from running.
 #include "../common/oitbench.glsl"
 #define STORAGE_CAPTURE
-#include "../capture/fragment_storage.glsl"
-#include "shade.glsl"
+#include "fragment_storage.glsl"
+#include "../scene/shade.glsl"
 layout(early_fragment_tests) in;
 in vec4 vColour;
 in vec2 vUv;

@@ -1,0 +1,131 @@
+// The shared part of MBOIT's and STOCHASTIC's cases (captured_view.hpp).
+#include "oit/moments/captured_view.hpp"
+
+#include <algorithm>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "oit/case_support.hpp"
+#include "oit/reference/image_compare.hpp"
+#include "oit/reference/image_io.hpp"
+#include "oit/scene/coverage_estimate.hpp"
+
+namespace oitbench::oit {
+
+CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
+  CapturedView v;
+  v.fx = std::make_unique<ScenePasses>(p, ctx);
+  v.scene = &v.fx->scene();
+  const View& view = v.fx->view();
+  const Mesh& mesh = v.fx->mesh();
+  v.mesh = &v.fx->transparent();
+  v.view_proj = v.fx->view_projection();
+  // The planes back out of the perspective matrix (glm::perspective's layout), as approx_case.cpp.
+  glm::mat4 pm = v.view_proj * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
+  v.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
+  // The paper warps the view depth between bounds of the scene, not the projection's planes (whose
+  // near plane can be far in front of the geometry): the vertices' own extent, slightly widened.
+  glm::vec3 forward = glm::normalize(view.target - view.eye);
+  float lo = 1e30f, hi = -1e30f;
+  for (const auto& vertex : mesh.vertices) {
+    float d = glm::dot(vertex.position - view.eye, forward);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  lo = std::clamp(lo * 0.999f, v.near_far.x, v.near_far.y);
+  hi = std::clamp(hi * 1.001f, lo * 1.001f, v.near_far.y);
+  v.depth_range = {lo, hi};
+  size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
+  auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
+                                     capture_budget(mesh, v.view_proj, ctx, v.fx->opaque() ? 2 : 1));
+  auto capture = build_capture_programs(
+      *lists, ctx, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
+      v.fx->geometry_defines());
+  for (const auto& prog : capture) {
+    set_view_proj(prog, v.view_proj);
+    v.fx->bind_geometry(prog.get());
+  }
+  const auto referencing = ctx.phase(Phase::Reference);  // the fragments the references composite
+  v.fx->draw_opaque();
+  v.backdrop = v.fx->read_backdrop();
+  RenderTarget target(ctx.width(), ctx.height(), GL_R8);
+  target.bind();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  lists->capture(ids(capture), [&] { v.mesh->draw(); });
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  v.fragments = visible_fragments(lists->read_back(), v.backdrop, v.hidden);
+  return v;
+}
+
+CapturedViewCase::CapturedViewCase(const ParamSet& p, CaseContext& ctx)
+    : width_(ctx.width()),
+      height_(ctx.height()),
+      view_(capture_view(p, ctx)),
+      out_(ctx.width(), ctx.height(), GL_RGBA32F),
+      flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
+      dump_(ctx.image_stem()) {
+  phases_ = ctx.phase_clock();
+}
+
+bool CapturedViewCase::begin_run(PassTimer& timer) {
+  view_.fx->run_before(timer);
+  if (view_.fx->transparency()) return true;
+  view_.fx->fill_with_backdrop(out_.framebuffer(), out_.color_texture());  // nothing transparent
+  return false;
+}
+
+void CapturedViewCase::keep_frame() {
+  if (flicker_runs_ <= 0) return;
+  frames_.push_back(rgb_of(out_.read_rgba32f()));
+  if (static_cast<int>(frames_.size()) > flicker_runs_) frames_.erase(frames_.begin());
+}
+
+CapturedViewCase::ModelValidation CapturedViewCase::validate_against(const std::vector<double>& model,
+                                                                     double tolerance) {
+  ModelValidation mv;
+  auto& m = mv.v.metrics;
+  auto reading = PhaseClock::Scope(phases_, Phase::Readback);
+  mv.rgb = rgb_of(out_.read_rgba32f());
+  reading.end();
+  const HostLists& host = view_.fragments;
+  mv.stats = list_stats(host);
+  auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
+  auto ref = composite_reference(host, view_.backdrop);
+  referencing.end();
+  ApproxError err = approx_error(mv.rgb, ref);
+  m["total_fragments"] = std::to_string(mv.stats.total_fragments);
+  m["peak_depth"] = std::to_string(mv.stats.peak_depth);
+  m["mean_depth"] = fmt(mv.stats.mean_depth);
+  m["polygons"] = std::to_string(view_.fx->mesh().polygons());
+  if (view_.fx->opaque()) m["hidden_fragments"] = std::to_string(view_.hidden);
+  m["rmse"] = fmt(err.rmse);
+  m["psnr"] = fmt(err.psnr);
+  m["max_abs_error"] = fmt(err.max_abs_error);
+  m["frac_pixels_off"] = fmt(err.frac_pixels_off);
+  m["model_rmse"] = fmt(approx_error(std::vector<float>(model.begin(), model.end()), ref).rmse);
+  m["bytes_per_pixel"] = std::to_string(bytes_);
+  mv.check = check_against_model(mv.rgb, model, width_, tolerance);
+  m["nonfinite"] = std::to_string(mv.check.nonfinite);
+  m["model_max_diff"] = fmt(mv.check.max_diff);
+  if (frames_.size() >= 2) {
+    Flicker f = flicker_of(frames_);
+    m["flicker"] = fmt(f.mean);
+    m["flicker_max"] = fmt(f.peak);
+    m["flicker_pixels"] = std::to_string(f.changed);
+  }
+  if (!dump_.empty()) write_result_images(dump_, mv.rgb, ref, width_, height_);
+  merge_shadow_check(m, mv.problems, view_.fx->validate_shadow());
+  if (!mv.stats.error.empty()) mv.problems.push_back(mv.stats.error);
+  return mv;
+}
+
+void CapturedViewCase::add_output_problems(ModelValidation& mv) {
+  if (mv.check.nonfinite)
+    mv.problems.push_back(std::to_string(mv.check.nonfinite) + " non-finite channel value(s) (NaN or Inf)");
+  if (mv.check.out_of_range)
+    mv.problems.push_back(std::to_string(mv.check.out_of_range) + " channel value(s) outside [0, 1]");
+}
+
+}  // namespace oitbench::oit

@@ -1,0 +1,76 @@
+#pragma once
+// What MBOIT's and STOCHASTIC's cases (moments.hpp) share, written once (captured_view.cpp).
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/render_target.hpp"
+#include "oit/moments/moment_model.hpp"
+#include "oit/moments/moments.hpp"
+#include "oit/reference/reference.hpp"
+
+namespace oitbench::oit {
+
+// What both cases start from: the scene's mesh for the view, its camera, and the view's fragments
+// captured once (PPLL) for the exact reference and the CPU models.
+struct CapturedView {
+  // The scene's effects (scene_passes.hpp): the opaque pass, the shading, the backdrop; these
+  // techniques test the opaque depth in their shaders (opaque_hides, depth_sampler_defines()).
+  std::unique_ptr<ScenePasses> fx;
+  const SceneDesc* scene = nullptr;
+  const GpuMesh* mesh = nullptr;  // fx's transparent primitives
+  Backdrop backdrop;              // the opaque colour and depth, read back for the references
+  size_t hidden = 0;              // transparent fragments the CPU hid behind the opaque depth
+  glm::mat4 view_proj{1.0f};
+  glm::vec2 near_far{0.1f, 10.f};
+  glm::vec2 depth_range{0.1f, 10.f};  // nearest and farthest vertex along the view direction
+  HostLists fragments;                // the visible ones (with the opaque effect, hidden by the CPU)
+};
+CapturedView capture_view(const ParamSet& p, CaseContext& ctx);
+
+// The part MBOIT's and STOCHASTIC's cases share (captured_view.cpp): the view captured once, the
+// result target and its read-backs, the frames the flicker metric compares, and the validation
+// against the reference and the technique's CPU model up to the technique's own checks.
+class CapturedViewCase : public OitCase {
+ public:
+  CapturedViewCase(const ParamSet& p, CaseContext& ctx);
+  GLuint result_texture() override { return out_.color_texture(); }
+  GLuint opaque_texture() const override { return view_.fx->opaque_texture(); }
+  std::map<std::string, std::string> resolved_params() const override { return view_.fx->resolved_params(); }
+
+ protected:
+  // run()'s start: the effects' passes; false when nothing is transparent (the image is then the backdrop).
+  bool begin_run(PassTimer& timer);
+  // run()'s end, outside the timed passes: keeps the last flicker_runs frames.
+  void keep_frame();
+
+  // What validate() has after the checks every model-checked case makes: the list and error metrics,
+  // the model's error, bytes_per_pixel, the model check's nonfinite and model_max_diff, the flicker,
+  // and the problems of the shadow pass and of a broken list.
+  struct ModelValidation {
+    Validation v;
+    std::vector<float> rgb;
+    ListStats stats;
+    ModelCheck check;
+    std::vector<std::string> problems;
+  };
+  // `model` is computed by the caller, inside a Reference stretch of phases_.
+  ModelValidation validate_against(const std::vector<double>& model, double tolerance);
+  // Non-finite and out-of-range channels as problems (after the technique's own).
+  static void add_output_problems(ModelValidation& mv);
+
+  int width_, height_;
+  CapturedView view_;
+  RenderTarget out_;
+  FullscreenTriangle quad_;
+  int bytes_ = 0;                 // per pixel
+  PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
+
+ private:
+  int flicker_runs_;
+  std::string dump_;
+  std::vector<std::vector<float>> frames_;
+};
+
+}  // namespace oitbench::oit
