@@ -12,12 +12,12 @@
 #define SLICE_KEYS_PRIMITIVES_BINDING 3  // SSBO: the primitives' vertex indices
 
 // split.comp: one bit of the radix sort per round
-#define SPLIT_KEYS_IN_BINDING 0     // SSBO: this round's keys
-#define SPLIT_INDICES_IN_BINDING 1  // SSBO: this round's primitive order
-#define SPLIT_KEYS_OUT_BINDING 2    // SSBO: out, the keys split on the bit
-#define SPLIT_INDICES_OUT_BINDING 3 // SSBO: out, the order split on the bit
-#define SPLIT_LOCAL_BINDING 4       // SSBO: each key's prefix count within its block
-#define SPLIT_BLOCKS_BINDING 5      // SSBO: [0] total zeros, [1 + b] block b's prefix
+#define SPLIT_KEYS_IN_BINDING 0      // SSBO: this round's keys
+#define SPLIT_INDICES_IN_BINDING 1   // SSBO: this round's primitive order
+#define SPLIT_KEYS_OUT_BINDING 2     // SSBO: out, the keys split on the bit
+#define SPLIT_INDICES_OUT_BINDING 3  // SSBO: out, the order split on the bit
+#define SPLIT_LOCAL_BINDING 4        // SSBO: each key's prefix count within its block
+#define SPLIT_BLOCKS_BINDING 5       // SSBO: [0] total zeros, [1 + b] block b's prefix
 
 // emit_indices.comp: the sorted order as an element buffer
 #define EMIT_SORTED_BINDING 0      // SSBO: the sorted primitive order
