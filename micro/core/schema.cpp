@@ -167,6 +167,12 @@ std::vector<ColumnSpec> timing_columns() {
       {"program_cache", T::Text, "", "hit, miss, partial or off: whether compile_ms paid for compiling", "timing"},
       {"warmup_ms", T::Number, "ms",
        "the first (untimed) repetition, JIT included; where the work scales (sample_units), one unit of it", "timing"},
+  };
+}
+
+// Where the case's wall time went (the time account): its phases outside and inside the samples.
+std::vector<ColumnSpec> phase_columns() {
+  return {
       {"case_wall_s", T::Number, "s",
        "the case's wall time, the sum of its phase_*_s columns (total row only): from its prepare to its validation's "
        "end, the runner's own work in its interleaved group shared equally among the group's cases; the run's start "
@@ -194,6 +200,12 @@ std::vector<ColumnSpec> timing_columns() {
        "of case_wall_s: the measured remainder (the runner's work between phases: progress, GPU state, the "
        "stopping rule, raw rows)",
        "timing"},
+  };
+}
+
+// The GPU's state around the case group (NVML), to tell throttling from a slower case.
+std::vector<ColumnSpec> gpu_state_columns() {
+  return {
       {"gpu_sm_clock_start_mhz", T::Integer, "MHz",
        "the GPU's SM clock (NVML) just before the case group's first warm-up repetition; empty without NVML", "timing"},
       {"gpu_sm_clock_end_mhz", T::Integer, "MHz",
@@ -256,7 +268,8 @@ std::vector<ColumnSpec> provenance_columns() {
 const std::vector<ColumnSpec>& summary_base_columns() {
   static const std::vector<ColumnSpec> cols = [] {
     std::vector<ColumnSpec> c = identity_columns();
-    for (auto part : {timing_columns(), provenance_columns()}) c.insert(c.end(), part.begin(), part.end());
+    for (auto part : {timing_columns(), phase_columns(), gpu_state_columns(), provenance_columns()})
+      c.insert(c.end(), part.begin(), part.end());
     return c;
   }();
   return cols;

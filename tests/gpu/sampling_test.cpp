@@ -105,8 +105,9 @@ TEST(Sampling, TheStoppingRuleStopsAtItsTargetOrSaysWhyNot) {
   // once ran 30 samples of a size chosen from a JIT-laden round within the 50 ms (about 1.7 ms each). The
   // bound is an eighth of it: under the whole suite at -j2 a correctly sized sample later read 3.7 ms, once
   // the runs it was sized from had got faster.
-  if (num(timed[0], "sample_runs") < 1000)  // runs_per_sample's cap
+  if (num(timed[0], "sample_runs") < 1000) {  // runs_per_sample's cap
     EXPECT_GE(num(timed[0], "sample_runs") * num(timed[0], "median_ms"), 2.5) << timed[0]["sample_runs"];
+  }
 }
 
 TEST(Sampling, EveryCaseRunsWithItsBaselineAndCarriesAPairedSpeedup) {
