@@ -17,6 +17,7 @@
 #include "oit/reference/image_compare.hpp"
 #include "oit/reference/image_io.hpp"
 #include "oit/reference/reference.hpp"
+#include "oit/reference/visible_capture.hpp"
 #include "oit/scene/coverage_estimate.hpp"
 #include "oit/scene/gpu_mesh.hpp"
 #include "oit/scene/scene.hpp"
@@ -188,26 +189,10 @@ class ApproxCase final : public OitCase {
   std::shared_ptr<const ReferenceView> reference_view(const ParamSet& p, CaseContext& ctx, const glm::mat4& vp) {
     auto make = [&] {
       auto r = std::make_shared<ReferenceView>();
-      passes_.draw_opaque();
-      r->backdrop = passes_.read_backdrop();
-      size_t pixels = static_cast<size_t>(width_) * height_;
-      auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
-                                         capture_budget(passes_.mesh(), vp, ctx, passes_.opaque() ? 2 : 1));
-      auto capture = build_capture_programs(
-          *lists, ctx, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
-          passes_.geometry_defines());
-      for (const auto& prog : capture) {
-        set_view_proj(prog, vp);
-        passes_.bind_geometry(prog.get());
-      }
-      out_.bind();
-      glDisable(GL_DEPTH_TEST);
-      glDisable(GL_CULL_FACE);
-      glDisable(GL_BLEND);
-      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-      lists->capture(ids(capture), [&] { passes_.transparent().draw(); });
-      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      r->host = visible_fragments(lists->read_back(), r->backdrop, r->hidden);
+      VisibleFragments seen = capture_visible_fragments(passes_, vp, p, ctx);
+      r->backdrop = std::move(seen.backdrop);
+      r->host = std::move(seen.host);
+      r->hidden = seen.hidden;
       r->stats = list_stats(r->host);
       r->composite = composite_reference(r->host, r->backdrop);
       return std::shared_ptr<const ReferenceView>(std::move(r));

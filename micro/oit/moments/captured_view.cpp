@@ -7,6 +7,7 @@
 #include "oit/case_support.hpp"
 #include "oit/reference/image_compare.hpp"
 #include "oit/reference/image_io.hpp"
+#include "oit/reference/visible_capture.hpp"
 #include "oit/scene/coverage_estimate.hpp"
 
 namespace oitbench::oit {
@@ -34,28 +35,11 @@ CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
   lo = std::clamp(lo * 0.999f, v.near_far.x, v.near_far.y);
   hi = std::clamp(hi * 1.001f, lo * 1.001f, v.near_far.y);
   v.depth_range = {lo, hi};
-  size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
-  auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
-                                     capture_budget(mesh, v.view_proj, ctx, v.fx->opaque() ? 2 : 1));
-  auto capture = build_capture_programs(
-      *lists, ctx, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
-      v.fx->geometry_defines());
-  for (const auto& prog : capture) {
-    set_view_proj(prog, v.view_proj);
-    v.fx->bind_geometry(prog.get());
-  }
   const auto referencing = ctx.phase(Phase::Reference);  // the fragments the references composite
-  v.fx->draw_opaque();
-  v.backdrop = v.fx->read_backdrop();
-  RenderTarget target(ctx.width(), ctx.height(), GL_R8);
-  target.bind();
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_BLEND);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  lists->capture(ids(capture), [&] { v.mesh->draw(); });
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  v.fragments = visible_fragments(lists->read_back(), v.backdrop, v.hidden);
+  VisibleFragments seen = capture_visible_fragments(*v.fx, v.view_proj, p, ctx);
+  v.backdrop = std::move(seen.backdrop);
+  v.fragments = std::move(seen.host);
+  v.hidden = seen.hidden;
   return v;
 }
 

@@ -13,6 +13,7 @@
 #include "oit/reference/image_compare.hpp"
 #include "oit/reference/image_io.hpp"
 #include "oit/reference/reference.hpp"
+#include "oit/reference/visible_capture.hpp"
 #include "oit/scene/coverage_estimate.hpp"
 #include "oit/scene/gpu_mesh.hpp"
 #include "oit/scene/scene.hpp"
@@ -126,28 +127,12 @@ class PeelCase final : public OitCase {
 
     // The fragments, once: the exact reference and the model work on these. With the opaque
     // effect: every transparent fragment, hidden by the CPU against the opaque pass's depth.
-    size_t pixels = static_cast<size_t>(width_) * height_;
     {
       const auto referencing = ctx.phase(Phase::Reference);
-      fx_.draw_opaque();
-      backdrop_ = fx_.read_backdrop();
-      auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
-                                         capture_budget(fx_.mesh(), vp, ctx, fx_.opaque() ? 2 : 1));
-      auto capture = build_capture_programs(
-          *lists, ctx, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
-          fx_.geometry_defines());
-      for (const auto& prog : capture) {
-        set_view_proj(prog, vp);
-        fx_.bind_geometry(prog.get());
-      }
-      out_.bind();
-      glDisable(GL_DEPTH_TEST);
-      glDisable(GL_CULL_FACE);
-      glDisable(GL_BLEND);
-      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-      lists->capture(ids(capture), [&] { fx_.transparent().draw(); });
-      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      host_ = visible_fragments(lists->read_back(), backdrop_, hidden_);
+      VisibleFragments seen = capture_visible_fragments(fx_, vp, p, ctx);
+      backdrop_ = std::move(seen.backdrop);
+      host_ = std::move(seen.host);
+      hidden_ = seen.hidden;
     }
 
     Defines d = fx_.geometry_defines();
