@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Resolve and total speedups over BASE-IS from an `oitbench run --preset knowles2014` CSV, per view
-and averaged like Knowles 2014 table 1, beside the paper's tables 1 and 3 (CS-* beside CUDA-*).
+"""Resolve and total speedups over the baseline technique from an `oitbench run --preset knowles2014` CSV,
+per view and averaged like Knowles 2014 table 1, beside the paper's tables 1 and 3 (our compute-shader
+resolves beside its CUDA ones).
 
 usage: scripts/oit_knowles_summary.py RESULTS.csv [PAPER_TABLES_DIR]  (markdown on stdout)
 PAPER_TABLES_DIR holds knowles2014_table1_summary.csv and knowles2014_table3_speedups.csv (default: the
@@ -92,7 +93,7 @@ def main(argv=None):
     print("| scene | view | fragments | peak depth | MAX_FRAGS | capture fragments/s | node_pool_bytes |")
     print("|---|---|---|---|---|---|---|")
     for scene, view in views:
-        r = res.get((scene, view, "BASE-IS", "total"))
+        r = res.get((scene, view, knowles.BASELINE, "total"))
         if r:
             rate = oitres.to_float(r.get("fragments_per_s"))
             print(f"| {scene} | {view} | {r.get('total_fragments', '')} | {r.get('peak_depth', '')} "

@@ -588,18 +588,19 @@ OIT_PEEL = set(techniques.names("peel"))
 
 def oit_label(row):
     """The technique as the papers name it, with the node count where it matters (approximate ones)."""
-    t = row.get("technique") or row.get("variant") or "?"
-    if t in OIT_APPROX and t not in ("WBOIT", "unsorted") and row.get("nodes"):
+    t = name = row.get("technique") or row.get("variant") or "?"
+    # The parameter that sizes the technique, by what the technique table says it reads.
+    if techniques.reads(name, "nodes") and row.get("nodes"):
         t += f"/{row['nodes']}"
-    if t == "WBOIT" and row.get("wboit_weight"):
+    if techniques.reads(name, "wboit_weight") and row.get("wboit_weight"):
         t += f"/{row['wboit_weight']}"
-    if t in OIT_PEEL and row.get("max_layers") not in (None, "", "0"):
+    if name in OIT_PEEL and row.get("max_layers") not in (None, "", "0"):
         t += f"/{row['max_layers']}"
-    if t == "MBOIT" and row.get("moments"):  # MBOIT/6p: 6 power moments; /3t trigonometric; /16 bits
+    if techniques.reads(name, "moments") and row.get("moments"):  # /6p: 6 power moments; /3t trigonometric; /16 bits
         t += f"/{row['moments']}{'t' if row.get('moment_kind') == 'trigonometric' else 'p'}"
         if row.get("moment_bits") == "16":
             t += "/16"
-    if t == "STOCHASTIC" and row.get("samples_per_pixel"):
+    if techniques.reads(name, "samples_per_pixel") and row.get("samples_per_pixel"):
         t += f"/{row['samples_per_pixel']}"
     # Fragment formats other than the papers' (rgba8, window depth) are part of the case's name.
     for col, default in (("frag_colour", "rgba8"), ("frag_depth", "window")):

@@ -1,31 +1,36 @@
-"""Knowles 2014's tables, computed once: the speedup over BASE-IS per view (table 3), its mean and best
+"""Knowles 2014's tables, computed once: the speedup over the baseline (techniques.BASELINE) per view (table 3), its mean and best
 over the views (table 1), and the paper's own numbers for both. scripts/tables.py (through
 papers.summary_rows), scripts/findings.py and scripts/oit_knowles_summary.py all take them from here."""
 import statistics
 
 from oitbench import results as oitres
+from oitbench import techniques
 
-BASELINE = "BASE-IS"
+BASELINE = techniques.BASELINE
 SOURCE = "knowles2014-rbs"
 # Table 1's four figures per technique, in the paper's column order.
 TABLE1_METRICS = ("average_total", "average_resolve", "best_total", "best_resolve")
 # Our stand-ins for the papers' models (scenes/engine-grid.json, scenes/house.json): same view names.
 PAPER_SCENE = {"engine-grid": "powerplant", "house": "atrium"}
+# The paper ran CUDA kernels where we run compute shaders: our resolve scheme -> the paper's, same sort.
+PAPER_SCHEME = {"CS": "CUDA"}
 
 
 def paper_name(technique):
-    """Knowles 2014's name for our technique: our CS-* (compute shaders) stand in for its CUDA-*."""
-    return "CUDA-" + technique[3:] if technique.startswith("CS-") else technique
+    """Knowles 2014's name for our technique: our compute-shader resolves stand in for its CUDA ones
+    (PAPER_SCHEME), named by scheme and sort as the paper names them."""
+    scheme = PAPER_SCHEME.get(techniques.scheme(technique))
+    return f"{scheme}-{techniques.sort(technique)}" if scheme else technique
 
 
 def ratio(base, x):
-    """BASE-IS time / technique time, None where either is missing or the time is 0."""
+    """Baseline time / technique time, None where either is missing or the time is 0."""
     return base / x if base is not None and x else None
 
 
 def view_speedups(rows, pass_, paired=True):
-    """{(scene, view): {technique: BASE-IS time / technique time}} of one pass of the oit rows given,
-    for the views that have a BASE-IS row. paired: a row's own `speedup` where its baseline is BASE-IS
+    """{(scene, view): {technique: BASELINE's time / technique time}} of one pass of the oit rows given,
+    for the views that have a BASELINE row. paired: a row's own `speedup` where its baseline is BASELINE
     (schema 4: the two ran side by side in one group) is taken before the ratio of the two medians.
     Where a view has two rows of a technique the last one counts."""
     times, pairs = {}, {}
@@ -41,7 +46,7 @@ def view_speedups(rows, pass_, paired=True):
 
 
 def summarize(speedups, metric):
-    """Table 1's figure `metric` (average_* or best_*, with or without _speedup_vs_BASE-IS) of a list of
+    """Table 1's figure `metric` (average_* or best_*, with or without _speedup_vs_BASELINE) of a list of
     per-view speedups: their mean or their maximum; None for an empty list."""
     if not speedups:
         return None
@@ -78,7 +83,7 @@ class Paper:
                 self.table1.setdefault((r["technique"], r["metric"]), value)
 
     def speedup(self, technique, scene, view, pass_):
-        """Table 3's speedup of our `technique` (CS-* read as CUDA-*) on our scene (the stand-ins read as
+        """Table 3's speedup of our `technique` (read as paper_name()) on our scene (the stand-ins read as
         the paper's models) and view, for pass_ resolve or total; None where the paper has none."""
         key = (PAPER_SCENE.get(scene, scene).lower(), view.lower(), paper_name(technique), pass_)
         return self.table3.get(key)

@@ -32,6 +32,29 @@ def load(path=TECHNIQUES_PATH):
 TABLE = load()
 
 
+def _by(**props):
+    """The table's techniques whose fields equal `props` (family=, scheme=, sort=, reference=, ...)."""
+    return [t for t in TABLE if all(t.get(k) == v for k, v in props.items())]
+
+
+def find(**props):
+    """The name of the one technique with these fields (e.g. scheme="BMA", sort="RBS-L"); ResultsError where
+    the table has none or several, so a script that asks for a role the table lost fails with its reason."""
+    found = _by(**props)
+    if len(found) != 1:
+        what = ", ".join(f"{k}={v}" for k, v in props.items())
+        raise ResultsError(f"{TECHNIQUES_PATH}: {len(found)} techniques with {what}, expected one")
+    return found[0]["name"]
+
+
+# The roles scripts need, found by property. BASELINE: the table's first technique, the one render/view start
+# with (micro/oit/techniques.hpp default_technique()) and the exact baseline the Knowles presets' speedups
+# divide by (tests/scripts/test_library.py checks the presets agree). CPU_RESOLVE: the exact technique whose
+# resolve runs on the CPU.
+BASELINE = TABLE[0]["name"]
+CPU_RESOLVE = find(family="exact", scheme="CPU")
+
+
 def names(*families):
     """The techniques of these families (all when none is given), in the table's order."""
     return [t["name"] for t in TABLE if not families or t["family"] in families]
@@ -39,6 +62,30 @@ def names(*families):
 
 def scheme(name):
     return next((t["scheme"] for t in TABLE if t["name"] == name), "")
+
+
+def sort(name):
+    return next((t["sort"] for t in TABLE if t["name"] == name), "")
+
+
+def params(name):
+    """The parameters technique `name` reads (the table's params); [] for an unknown name."""
+    return next((t["params"] for t in TABLE if t["name"] == name), [])
+
+
+def reads(name, param):
+    """Whether technique `name` reads parameter `param` (the table's params); False for an unknown name."""
+    return any(param in t["params"] for t in TABLE if t["name"] == name)
+
+
+def reading(param, *families):
+    """The techniques (of these families, all when none is given) that read `param`, in the table's order."""
+    return [t["name"] for t in TABLE if param in t["params"] and (not families or t["family"] in families)]
+
+
+def twin(name, scheme_):
+    """The exact technique with `name`'s sort under resolve scheme `scheme_` (BMA-IS for BASE-IS and BMA)."""
+    return find(family="exact", scheme=scheme_, sort=sort(name))
 
 
 def exact_in_paper_order(schemes=PAPER_SCHEME_ORDER):

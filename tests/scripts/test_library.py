@@ -59,6 +59,28 @@ class Techniques(unittest.TestCase):
         self.assertEqual(techniques.exact_in_paper_order()[0], "BASE-IS")
         self.assertEqual(techniques.exact_in_paper_order()[-1], "CPU-NATIVE")
 
+    def test_roles_are_found_by_property(self):
+        # The baseline is the table's first technique and the one the Knowles presets divide by.
+        self.assertEqual(techniques.BASELINE, techniques.names()[0])
+        for preset in ("knowles2013", "knowles2014", "knowles2014-quick"):
+            with open(os.path.join(SCRIPTS, "..", "presets", preset + ".json"), encoding="utf-8") as f:
+                grids = json.load(f)["runs"]
+            baselines = {g["baseline"]["technique"] for g in grids if g.get("baseline")}
+            self.assertEqual(baselines, {techniques.BASELINE}, preset)
+        cpu = [t for t in techniques.TABLE if t["scheme"] == "CPU"]
+        self.assertEqual([techniques.CPU_RESOLVE], [t["name"] for t in cpu])
+        base = techniques.find(family="exact", scheme="BASE", sort="RBS-L")
+        bma = techniques.twin(base, "BMA")
+        self.assertEqual((techniques.scheme(bma), techniques.sort(bma)), ("BMA", "RBS-L"))
+        self.assertIn("nodes", techniques.params(techniques.reading("nodes")[0]))
+        self.assertFalse(techniques.reads("no such technique", "nodes"))
+
+    def test_a_role_the_table_lacks_or_repeats_is_an_error(self):
+        with self.assertRaisesRegex(oitres.ResultsError, r"techniques\.json: 0 techniques with scheme=NOSUCH"):
+            techniques.find(scheme="NOSUCH")
+        with self.assertRaisesRegex(oitres.ResultsError, r"techniques with family=exact, expected one"):
+            techniques.find(family="exact")
+
     def test_a_broken_export_is_refused_naming_it(self):
         with self.assertRaisesRegex(oitres.ResultsError, r"nosuch\.json: cannot read"):
             techniques.load("nosuch.json")

@@ -2,7 +2,7 @@
 from oitbench import figures as plot
 from oitbench import papers as tables
 from oitbench.findings.common import (
-    BLENDS, DASH, PER_PIXEL_ARRAY, RMSE_FLOOR, f_err, f_m, f_ms, f_x, field, missing, ms, num, ratio, res,
+    BASE_IMS, BLENDS, DASH, PER_PIXEL_ARRAY, UNSORTED, WEIGHTED_BLEND, RMSE_FLOOR, f_err, f_m, f_ms, f_x, field, missing, ms, num, ratio, res,
     scene_key, sizes_of, span, table, verdict, view_key, word)
 
 
@@ -91,16 +91,16 @@ def section_approx(f):
                          f"{word(ratio(exact[fe], ppa[fa]))} for the exact one ({f_x(ratio(exact[fe], ppa[fa]))}x).")
     cheap_t, cheap_e = [], []
     for s in scenes:
-        imsr = next((v[s] for k, v in cases.items() if k[0] == "BASE-IMS" and s in v), None)
-        mlab = [v[s] for k, v in cases.items() if k[0] == "MLAB" and s in v]
+        imsr = next((v[s] for k, v in cases.items() if k[0] == BASE_IMS and s in v), None)
+        mlab = [v[s] for k, v in cases.items() if k[0] == PER_PIXEL_ARRAY[0] and s in v]
         ref = min(mlab, key=lambda r: (int(r["nodes"]), r.get("storage", ""))) if mlab else None
         for k, v in cases.items():
-            if k[0] in BLENDS and s in v and (k[0] == "unsorted" or k[3] == "eq7"):
+            if k[0] in BLENDS and s in v and (k[0] == UNSORTED or k[3] == "eq7"):
                 cheap_t.append(ratio(ms(v[s]), ms(imsr)))
                 cheap_e.append(ratio(num(v[s], "rmse"), num(ref, "rmse")))
     if cheap_t:
-        lines.append(f"- Unsorted blending and WBOIT (eq7) take {span(cheap_t)}x BASE-IMS's time, at "
-                     f"{span(cheap_e)}x the rmse of the smallest MLAB.")
+        lines.append(f"- Unsorted blending and {WEIGHTED_BLEND} (eq7) take {span(cheap_t)}x {BASE_IMS}'s time, at "
+                     f"{span(cheap_e)}x the rmse of the smallest {PER_PIXEL_ARRAY[0]}.")
     diffs = [(num(r, "model_max_diff"), plot.oit_label(r), r["scene"]) for r in rows
              if num(r, "model_max_diff") is not None]
     if diffs:
@@ -140,8 +140,8 @@ def section_error_vs_time(f):
         fa = min(ppa, key=lambda r: (ms(r), plot.oit_label(r))) if ppa else None
         ppa_ratio.append(ratio(ms(fa), ms(fe)))
         on_front += [p[2] for p in front if p[2].split("/")[0] in PER_PIXEL_ARRAY]
-        u = next((r for r in g if r["technique"] == "unsorted"), None)
-        w = next((r for r in g if r["technique"] == "WBOIT"), None)
+        u = next((r for r in g if r["technique"] == UNSORTED), None)
+        w = next((r for r in g if r["technique"] == WEIGHTED_BLEND), None)
         if u and w:
             wb.append((key, ratio(ms(w), ms(u)), num(w, "rmse"), num(u, "rmse")))
         body.append([key[0], key[1], key[2],
@@ -162,7 +162,7 @@ def section_error_vs_time(f):
     both_worse = [k for k, tr, we, ue in wb if tr and tr > 1 and we is not None and ue is not None and we > ue]
     better = [k for k, tr, we, ue in wb if we is not None and ue is not None and we < ue]
     if wb:
-        lines.append(f"- WBOIT against unsorted blending: both slower and less exact on "
+        lines.append(f"- {WEIGHTED_BLEND} against unsorted blending: both slower and less exact on "
                      f"{', '.join(f'{k[0]} {k[1]}' for k in both_worse) or 'no scene'}; more exact on "
                      f"{', '.join(f'{k[0]} {k[1]}' for k in better) or 'no scene'}.")
     deep = [r for r in rows if r["scene"] == "planes-deep"]

@@ -15,15 +15,21 @@ DASH = tables.DASH
 EVEN_BAND = 1.10  # a time ratio within 1/1.10 .. 1.10 reads "about even": closer than this run can tell
 RMSE_FLOOR = 1e-6  # exact techniques tie at this rmse, as on plot.py's error-against-time axis
 # The project brief's targets for exact OIT on this renderer.
-TARGET_RESOLVE_VS_CPU = 2.0  # best shader resolve within this factor of CPU-NATIVE's
+TARGET_RESOLVE_VS_CPU = 2.0  # best shader resolve within this factor of the CPU resolve's
 TARGET_CAPTURE_RATE = 30e6  # fragments per second captured
 SCENE_ORDER = ["planes", "hairball", "hair", "smoke", "engine-grid", "house", "planes-deep"]
 PAPER_SCENE = knowles.PAPER_SCENE  # our stand-ins for the papers' models
-# The exact techniques that run as shaders (not CPU-NATIVE), as Knowles 2014 lists them.
-EXACT_SHADER = techniques.exact_in_paper_order(("BASE", "G", "CS", "BMA"))
-PER_PIXEL_ARRAY = ("MLAB", "UMLAB", "AT", "HAT", "UAT", "UHAT", "LAAT")
+# The exact techniques that run as shaders (not the CPU resolve), as Knowles 2014 lists them.
+EXACT_SHADER = [t for t in techniques.exact_in_paper_order() if t != techniques.CPU_RESOLVE]
+# The approximate techniques that keep a per-pixel array of nodes, in the table's order.
+PER_PIXEL_ARRAY = tuple(techniques.reading("nodes", "approximate"))
 # The approximate techniques that blend every fragment instead of keeping nodes per pixel (WBOIT, unsorted).
 BLENDS = tuple(t["name"] for t in techniques.TABLE if t["family"] == "approximate" and "nodes" not in t["params"])
+# Among them the weighted blend (it reads a depth weight) and the no-OIT baseline (it reads the fewest parameters).
+WEIGHTED_BLEND = next(b for b in BLENDS if techniques.reads(b, "wboit_weight"))
+# The baseline's insertion-merge twin: the exact resolve the approximate ones are timed against.
+BASE_IMS = techniques.find(family="exact", scheme=techniques.scheme(techniques.BASELINE), sort="IMS")
+UNSORTED = min(BLENDS, key=lambda b: len(techniques.params(b)))
 
 
 # ------------------------------------------------------------------------------------------- reading

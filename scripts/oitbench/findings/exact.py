@@ -3,10 +3,24 @@ scaling."""
 from oitbench import results as oitres
 from oitbench import papers as tables
 from oitbench import knowles
+from oitbench import techniques
 from oitbench.findings.common import (
     DASH, EXACT_SHADER, PAPER_SCENE, TARGET_CAPTURE_RATE, TARGET_RESOLVE_VS_CPU, case_key, f_m, f_mb, f_ms,
     f_num, f_paper, f_x, field, max_frags_used, missing, ms, num, ratio, res, scene_key, span, table, verdict,
     view_key, word)
+
+# The techniques these sections single out, found in the technique table by what they are: the baseline, the
+# CPU resolve, the baseline's twin under BMA, the register block sort under both schemes, BMA's per-interval
+# choice; and what our compute-shader rows stand in for in the paper.
+BASE = techniques.BASELINE
+CPU = techniques.CPU_RESOLVE
+BMA = techniques.twin(BASE, "BMA")
+BASE_RBS = techniques.find(family="exact", scheme=techniques.scheme(BASE), sort="RBS-L")
+BMA_RBS = techniques.twin(BASE_RBS, "BMA")
+BMA_AUTO = techniques.find(family="exact", scheme="BMA", sort="AUTO")
+OURS_FOR_CUDA = next(iter(knowles.PAPER_SCHEME))
+CS_RBS = techniques.find(family="exact", scheme=OURS_FOR_CUDA, sort="RBS-L")
+CHECKED = BASE + "+order-check"
 
 
 def pairs_by_capture(f, name):
@@ -59,9 +73,9 @@ def section_capture(f):
         rs = over(pass_)
         lines.append(f"- {pass_.capitalize()}: PPPA takes {span(rs)}x PPLL's time ({verdict(rs)}); by scene, "
                      + "; ".join(parts) + ".")
-    cpu = over("resolve", "capture-storage", technique="CPU-NATIVE")
+    cpu = over("resolve", "capture-storage", technique=CPU)
     if cpu:
-        lines.append(f"- CPU-NATIVE's resolve gains most from contiguous fragments: {span(cpu)}x in "
+        lines.append(f"- {CPU}'s resolve gains most from contiguous fragments: {span(cpu)}x in "
                      "`capture-storage`.")
     lines.append(f"- Memory: PPPA needs {span([m for _, _, _, m in stats])}x PPLL's bytes.")
     lines += ["", "PPPA stores each pixel's fragments side by side, so a resolve reads them in order, but it "
@@ -73,7 +87,7 @@ def section_capture(f):
 def section_targets(f):
     lines = ["## Exact OIT: targets", "",
              f"Two targets of the project brief: a shader resolve within {f_paper(TARGET_RESOLVE_VS_CPU)}x of "
-             f"CPU-NATIVE's, and capture at {tables.fmt(TARGET_CAPTURE_RATE / 1e6, 3)} M fragments/s.", ""]
+             f"{CPU}'s, and capture at {tables.fmt(TARGET_CAPTURE_RATE / 1e6, 3)} M fragments/s.", ""]
     body = []
     for name in ("capture-storage", "knowles2014"):
         pairs = pairs_by_capture(f, name)
@@ -84,17 +98,17 @@ def section_targets(f):
                     groups.setdefault((scene, view, wh, cap), {})[tech] = ms(passes["resolve"])
         for key in sorted(groups, key=lambda k: (scene_key(k[0]), view_key(k[1]), k[3])):
             techs = groups[key]
-            shaders = {t: v for t, v in techs.items() if t != "CPU-NATIVE"}
-            if not shaders or "CPU-NATIVE" not in techs:
+            shaders = {t: v for t, v in techs.items() if t != CPU}
+            if not shaders or CPU not in techs:
                 continue
             best = min(shaders, key=lambda t: (shaders[t], t))
-            r = shaders[best] / techs["CPU-NATIVE"]
+            r = shaders[best] / techs[CPU]
             body.append([f"`{name}`", key[0], key[1], key[2], key[3], f"{best} {f_ms(shaders[best])}",
-                         f_ms(techs["CPU-NATIVE"]), f_x(r), "yes" if r <= TARGET_RESOLVE_VS_CPU else "no"])
+                         f_ms(techs[CPU]), f_x(r), "yes" if r <= TARGET_RESOLVE_VS_CPU else "no"])
     if body:
-        lines += ["The fastest shader resolve of each case against CPU-NATIVE's resolve (ms); `capture-storage` "
+        lines += [f"The fastest shader resolve of each case against {CPU}'s resolve (ms); `capture-storage` "
                   "runs two shader resolves, `knowles2014` all of them.", ""]
-        lines += table(["preset", "scene", "view", "resolution", "capture", "best shader resolve", "CPU-NATIVE",
+        lines += table(["preset", "scene", "view", "resolution", "capture", "best shader resolve", CPU,
                         "ratio", "met"], body, [False] * 5 + [False, True, True, False])
         for name in ("capture-storage", "knowles2014"):
             for cap in ("PPLL", "PPPA"):
@@ -138,13 +152,13 @@ def section_knowles2014(f):
     paper = knowles.Paper(f.paper_rows)
     rsp, tsp = speedups(f, name, "resolve"), speedups(f, name, "total")
     views = sorted(rsp, key=lambda k: (scene_key(k[0]), view_key(k[1])))
-    techs = [t for t in EXACT_SHADER + ["CPU-NATIVE"] if t != "BASE-IS" and any(t in rsp[v] for v in views)]
+    techs = [t for t in EXACT_SHADER + [CPU] if t != BASE and any(t in rsp[v] for v in views)]
     r0 = f.rows(name, "oit")[0]
     blocks = ", ".join(sorted({r["block"] for r in f.rows(name, "oit", pass_=None, valid=False) if r.get("block")}, key=int)) or "?"
     lines += [f"`presets/{name}.csv` ({res(r0)}, {f.reps(name, r0)}, register blocks of {blocks}): "
-              "speedup over BASE-IS (time of BASE-IS / time; paired per repetition where the rows carry it) per view, the paper's (GTX Titan, 1920x1080) in "
-              "brackets; the engine grid stands in for the power plant, the house for the atrium, CS-* for the "
-              "paper's CUDA-* rows.", ""]
+              f"speedup over {BASE} (time of {BASE} / time; paired per repetition where the rows carry it) per view, the paper's (GTX Titan, 1920x1080) in "
+              f"brackets; the engine grid stands in for the power plant, the house for the atrium, {OURS_FOR_CUDA}-* for "
+              f"the paper's {knowles.PAPER_SCHEME[OURS_FOR_CUDA]}-* rows.", ""]
     for label, sp, metric in (("Resolve", rsp, "resolve"), ("Total", tsp, "total")):
         body = []
         for t in techs:
@@ -168,34 +182,34 @@ def section_knowles2014(f):
     model = lambda v: v[0] in PAPER_SCENE  # noqa: E731
     every = lambda v: True  # noqa: E731
     for v in [v for v in views if rev(v)]:
-        lines.append(f"- {v[0]} {v[1]}: BASE-RBS-L's resolve {f_x(rsp[v].get('BASE-RBS-L'))}x (paper "
-                     f"{f_paper(paper.speedup('BASE-RBS-L', v[0], v[1], 'resolve'))}x), "
-                     f"BMA-RBS-L {f_x(rsp[v].get('BMA-RBS-L'))}x (paper "
-                     f"{f_paper(paper.speedup('BMA-RBS-L', v[0], v[1], 'resolve'))}x).")
-    rbs_fwd = ours("BASE-RBS-L", fwd) + ours("BMA-RBS-L", fwd)
-    lines.append(f"- On the sorted `fwd` views the RBS resolves (BASE-RBS-L, BMA-RBS-L) reach {span(rbs_fwd)}x "
-                 f"(paper {span(theirs('BASE-RBS-L', fwd) + theirs('BMA-RBS-L', fwd), f_paper)}x): against "
-                 f"BASE-IS, {verdict([1 / x for x in rbs_fwd if x])}.")
-    lines.append(f"- On the model views BMA-RBS-L's resolve speedup is {span(ours('BMA-RBS-L', model))}x (paper "
-                 f"{span(theirs('BMA-RBS-L', model), f_paper)}x).")
-    bma = ours("BMA-IS", every)
-    lines.append(f"- BMA-IS's resolve speedup is {span(bma)}x (paper {span(theirs('BMA-IS', every), f_paper)}x): "
-                 f"against BASE-IS, {verdict([1 / x for x in bma if x], 'views')}.")
-    cpu_best = [v for v in views if rsp[v].get("CPU-NATIVE") is not None and
-                rsp[v]["CPU-NATIVE"] >= max(x for x in rsp[v].values() if x is not None)]
+        lines.append(f"- {v[0]} {v[1]}: {BASE_RBS}'s resolve {f_x(rsp[v].get(BASE_RBS))}x (paper "
+                     f"{f_paper(paper.speedup(BASE_RBS, v[0], v[1], 'resolve'))}x), "
+                     f"{BMA_RBS} {f_x(rsp[v].get(BMA_RBS))}x (paper "
+                     f"{f_paper(paper.speedup(BMA_RBS, v[0], v[1], 'resolve'))}x).")
+    rbs_fwd = ours(BASE_RBS, fwd) + ours(BMA_RBS, fwd)
+    lines.append(f"- On the sorted `fwd` views the RBS resolves ({BASE_RBS}, {BMA_RBS}) reach {span(rbs_fwd)}x "
+                 f"(paper {span(theirs(BASE_RBS, fwd) + theirs(BMA_RBS, fwd), f_paper)}x): against "
+                 f"{BASE}, {verdict([1 / x for x in rbs_fwd if x])}.")
+    lines.append(f"- On the model views {BMA_RBS}'s resolve speedup is {span(ours(BMA_RBS, model))}x (paper "
+                 f"{span(theirs(BMA_RBS, model), f_paper)}x).")
+    bma = ours(BMA, every)
+    lines.append(f"- {BMA}'s resolve speedup is {span(bma)}x (paper {span(theirs(BMA, every), f_paper)}x): "
+                 f"against {BASE}, {verdict([1 / x for x in bma if x], 'views')}.")
+    cpu_best = [v for v in views if rsp[v].get(CPU) is not None and
+                rsp[v][CPU] >= max(x for x in rsp[v].values() if x is not None)]
     others = [v for v in views if v not in cpu_best]
-    text = f"- CPU-NATIVE's resolve is the fastest on {len(cpu_best)} of {len(views)} views"
+    text = f"- {CPU}'s resolve is the fastest on {len(cpu_best)} of {len(views)} views"
     if others:
         text += " (elsewhere: " + "; ".join(
             f"{v[0]} {v[1]}, {max((t for t in rsp[v] if rsp[v][t]), key=lambda t: rsp[v][t])} "
-            f"{f_x(max(x for x in rsp[v].values() if x))}x against CPU-NATIVE's {f_x(rsp[v].get('CPU-NATIVE'))}x"
+            f"{f_x(max(x for x in rsp[v].values() if x))}x against {CPU}'s {f_x(rsp[v].get(CPU))}x"
             for v in others) + ")"
-    lines.append(text + f"; {span(ours('CPU-NATIVE', rev))}x on the `rev` views, "
-                 f"{span(ours('CPU-NATIVE', lambda v: not rev(v)))}x elsewhere.")
-    p_total = paper.speedup("BMA-RBS-L", "planes", "Rev", "total")
-    p_res = paper.speedup("BMA-RBS-L", "planes", "Rev", "resolve")
+    lines.append(text + f"; {span(ours(CPU, rev))}x on the `rev` views, "
+                 f"{span(ours(CPU, lambda v: not rev(v)))}x elsewhere.")
+    p_total = paper.speedup(BMA_RBS, "planes", "Rev", "total")
+    p_res = paper.speedup(BMA_RBS, "planes", "Rev", "resolve")
     if p_total is not None:
-        lines.append(f"- The paper's planes Rev, BMA-RBS-L: total speedup {f_paper(p_total)}x, resolve "
+        lines.append(f"- The paper's planes Rev, {BMA_RBS}: total speedup {f_paper(p_total)}x, resolve "
                      f"{f_paper(p_res)}x.")
     lines.append("")
 
@@ -208,8 +222,8 @@ def section_knowles2014(f):
               "its scenes).", ""]
     lines += table(["technique", "avg total", "avg resolve", "best total", "best resolve",
                     "paper avg total / resolve", "paper best total / resolve"], body)
-    goal = {m: paper.summary("BMA-RBS-L", m) for m in ("best_resolve", "average_resolve", "average_total")}
-    shader = {t: v for t, v in avg.items() if t != "CPU-NATIVE"}
+    goal = {m: paper.summary(BMA_RBS, m) for m in ("best_resolve", "average_resolve", "average_total")}
+    shader = {t: v for t, v in avg.items() if t != CPU}
     if shader and all(g is not None for g in goal.values()):
         parts = []
         for m, label in (("best_resolve", "best resolve"), ("average_resolve", "average resolve"),
@@ -217,19 +231,19 @@ def section_knowles2014(f):
             t = max(shader, key=lambda k: (shader[k][m], k))
             parts.append(f"{label} {f_x(shader[t][m])}x ({t}) against {f_paper(goal[m])}x: "
                          f"{'met' if shader[t][m] >= goal[m] else 'not met'}")
-        lines.append("- The paper's BMA-RBS-L figures as targets for our best shader technique: " +
+        lines.append(f"- The paper's {BMA_RBS} figures as targets for our best shader technique: " +
                      "; ".join(parts) + ".")
-        if "CPU-NATIVE" in avg:
-            c = avg["CPU-NATIVE"]
-            lines.append(f"- CPU-NATIVE, outside the shader resolves: best resolve {f_x(c['best_resolve'])}x, "
+        if CPU in avg:
+            c = avg[CPU]
+            lines.append(f"- {CPU}, outside the shader resolves: best resolve {f_x(c['best_resolve'])}x, "
                          f"average resolve {f_x(c['average_resolve'])}x, average total {f_x(c['average_total'])}x.")
     lines.append("")
     body = []
-    for r in sorted(f.rows(name, "oit", technique="BMA-AUTO"), key=case_key):
+    for r in sorted(f.rows(name, "oit", technique=BMA_AUTO), key=case_key):
         body.append([r["scene"], r["view"], max_frags_used(r), f"`{r.get('bma_auto_choice', '')}`",
                      r.get("bma_auto_source", "")])
     if body:
-        lines += ["What BMA-AUTO chose per depth interval (interval top: sort), calibrated on this driver:", ""]
+        lines += [f"What {BMA_AUTO} chose per depth interval (interval top: sort), calibrated on this driver:", ""]
         lines += table(["scene", "view", "MAX_FRAGS", "choice", "source"], body, [False] * 5)
     body = []
     for v in views:
@@ -250,12 +264,12 @@ def section_knowles2014(f):
     return lines
 
 
-RESOLVE_GOAL_REV = 8.7  # the paper's best resolve speedup over BASE-IS (GTX Titan, table 3)
+RESOLVE_GOAL_REV = 8.7  # the paper's best resolve speedup over its baseline (GTX Titan, table 3)
 RESOLVE_GOAL_FWD = 1.2  # the fwd views' goal for our best exact resolve
 
 
 def resolve_label(r):
-    """BASE-IS, CS-IS+order-check, CS-RBS-L/bitonic, BMA-AUTO: one oit row's resolve as the preset varies it."""
+    """The technique, /its block sort, +order-check: one oit row's resolve as the preset varies it."""
     label = r["technique"]
     if r.get("block_sort"):
         label += "/" + r["block_sort"]
@@ -289,9 +303,9 @@ def section_resolve_speedups(f):
                   "group that holds its baseline, so its speedup "
                   "(baseline time / its time) is a ratio of medians taken side by side"
                   + (" (the rows' `speedup`: the median of the per-repetition ratios)" if paired else "")
-                  + ". The order check's candidates are paired with BASE-IS with the order check, chained "
-                  "through that one's pair with plain BASE-IS, so every speedup below is over plain BASE-IS. "
-                  "`resolve` and `total` passes; blocks of 32 for CS-RBS-L. Goals: the paper's best resolve "
+                  + f". The order check's candidates are paired with {BASE} with the order check, chained "
+                  f"through that one's pair with plain {BASE}, so every speedup below is over plain {BASE}. "
+                  f"`resolve` and `total` passes; blocks of 32 for {CS_RBS}. Goals: the paper's best resolve "
                   f"speedup on planes rev ({RESOLVE_GOAL_REV:g}x) and {RESOLVE_GOAL_FWD:g}x on every fwd view.", ""]
         speed, base_ms = {}, {}
         for pass_ in ("resolve", "total"):
@@ -305,10 +319,10 @@ def section_resolve_speedups(f):
                     # several groups has rows without one (its own), kept for its times only.
                     for r in rows:
                         label = resolve_label(r)
-                        if label == "BASE-IS" and pass_ == "resolve" and ms(r) is not None:
+                        if label == BASE and pass_ == "resolve" and ms(r) is not None:
                             base_ms.setdefault(view, []).append(ms(r))
                         entry = sp.setdefault(label, {"row": r})
-                        if label == "BASE-IS":
+                        if label == BASE:
                             entry[pass_], entry[pass_ + "_ms"] = 1.0, ms(r) if oitres.is_ok(r) else None
                             continue
                         value = num(r, "speedup") if oitres.is_ok(r) else None
@@ -318,20 +332,20 @@ def section_resolve_speedups(f):
                         entry[pass_ + "_ms"] = ms(r) if oitres.is_ok(r) else None
                         entry[pass_] = value
                         entry[pass_ + "_ci"] = (num(r, "speedup_ci_lo"), num(r, "speedup_ci_hi"))
-                    # Candidates with the order check were divided by BASE-IS with it: chain to plain BASE-IS.
-                    link = sp.get("BASE-IS+order-check", {}).get(pass_)
+                    # Candidates with the order check were divided by BASE with it: chain to plain BASE.
+                    link = sp.get(CHECKED, {}).get(pass_)
                     for label, entry in sp.items():
-                        if label.endswith("+order-check") and label != "BASE-IS+order-check":
+                        if label.endswith("+order-check") and label != CHECKED:
                             if entry.get(pass_) is not None and entry.get("chained_" + pass_) is None:
                                 entry["chained_" + pass_] = True
                                 entry[pass_] = entry[pass_] * link if link else None
                     continue
                 for a, b in zip(rows[0::2], rows[1::2]):  # schema 3: the run's groups of two, in the order they ran
                     la, lb = resolve_label(a), resolve_label(b)
-                    if la == "BASE-IS" and pass_ == "resolve" and ms(a) is not None:
+                    if la == BASE and pass_ == "resolve" and ms(a) is not None:
                         base_ms.setdefault(view, []).append(ms(a))
                     ok = oitres.is_ok(a) and oitres.is_ok(b) and ms(a) is not None and ms(b)
-                    chain = 1.0 if la == "BASE-IS" else sp.get(la, {}).get(pass_)
+                    chain = 1.0 if la == BASE else sp.get(la, {}).get(pass_)
                     value = ms(a) / ms(b) * chain if ok and chain else None
                     entry = sp.setdefault(lb, {"row": b})
                     entry[pass_] = value
@@ -355,10 +369,10 @@ def section_resolve_speedups(f):
                                   f"{f_ms(min(b))}–{f_ms(max(b))}" if b else DASH])
         lines += table(["view", "resolve", "resolve ms", "resolve speedup", "total speedup"], body,
                        [False, False, True, True, True])
-        lines += ["The fastest per view, and how far BASE-IS itself moved between the view's groups (the "
+        lines += [f"The fastest per view, and how far {BASE} itself moved between the view's groups (the "
                   "reason only paired ratios are compared):", ""]
         lines += table(["view", "fastest resolve", "resolve speedup", "total speedup", "goal", "goal met",
-                        "BASE-IS resolve ms across groups"], best_rows, [False, False, True, True, True, False, True])
+                        f"{BASE} resolve ms across groups"], best_rows, [False, False, True, True, True, False, True])
         lines += ["A list that arrives far-to-near needs no sort and one that arrives near-to-far only a "
                   "reversal: the order check turns both into a load and a pass, where every sort still pays for "
                   "its comparisons. The register networks sort without a branch, so on a driver that runs `if` "
@@ -393,32 +407,32 @@ def section_knowles2013(f):
     body, auto = [], []
     for key in sorted(groups, key=lambda k: (scene_key(k[0]), int(k[3] or 0))):
         g = groups[key]
-        base, bma = g.get(("BASE-IS", "total")), g.get(("BMA-IS", "total"))
+        base, bma = g.get((BASE, "total")), g.get((BMA, "total"))
         pscene = PAPER_SCENE.get(key[0], key[0])
         p = next((r["paper"] for k, r in pairs.items() if k[0] == "BMA-OIT" and k[2] == pscene and k[1] == key[3]
                   and k[4] == "total_speedup_vs_OIT"), None)
-        a = ratio(base, g.get(("BMA-AUTO", "total")))
+        a = ratio(base, g.get((BMA_AUTO, "total")))
         auto.append(a)
         body.append([key[0], key[1], key[2], key[3], f_ms(base), f_ms(bma), f_x(ratio(base, bma)),
                      f"{f_paper(p)} ({pscene})" if p is not None else DASH, f_x(a),
-                     f_ms(g.get(("BASE-IS", "resolve")))])
+                     f_ms(g.get((BASE, "resolve")))])
     r0 = f.rows(name, "oit")[0]
-    lines += [f"`presets/{name}.csv` ({f.reps(name, r0)}): `total` ms and the speedup over BASE-IS "
+    lines += [f"`presets/{name}.csv` ({f.reps(name, r0)}): `total` ms and the speedup over {BASE} "
               "(the paper's OIT); the paper's BMA-OIT speedup on its GPU (GTX 670, 1680x1050) for the scene "
               "our stand-in replaces.", ""]
-    lines += table(["scene", "view", "resolution", "MAX_FRAGS", "BASE-IS", "BMA-IS", "BMA-IS speedup",
-                    "paper", "BMA-AUTO speedup", "BASE-IS resolve"], body,
+    lines += table(["scene", "view", "resolution", "MAX_FRAGS", BASE, BMA, f"{BMA} speedup",
+                    "paper", f"{BMA_AUTO} speedup", f"{BASE} resolve"], body,
                    [False, False, False, True, True, True, True, False, True, True])
     smoke = sorted((k for k in groups if k[0] == "smoke"), key=lambda k: int(k[3] or 0))
     if len(smoke) >= 2:
         lo, hi = groups[smoke[0]], groups[smoke[-1]]
         p_lo = f.paper("knowles2013-bma", "2", "OIT", "total_time", scene="smoke", size=smoke[0][3])
         p_hi = f.paper("knowles2013-bma", "2", "OIT", "total_time", scene="smoke", size=smoke[-1][3])
-        lines.append(f"- Smoke, MAX_FRAGS {smoke[0][3]} \u2192 {smoke[-1][3]}: BASE-IS total "
-                     f"{f_ms(lo.get(('BASE-IS', 'total')))} \u2192 {f_ms(hi.get(('BASE-IS', 'total')))} ms, resolve "
-                     f"{f_ms(lo.get(('BASE-IS', 'resolve')))} \u2192 {f_ms(hi.get(('BASE-IS', 'resolve')))} ms; the "
+        lines.append(f"- Smoke, MAX_FRAGS {smoke[0][3]} \u2192 {smoke[-1][3]}: {BASE} total "
+                     f"{f_ms(lo.get((BASE, 'total')))} \u2192 {f_ms(hi.get((BASE, 'total')))} ms, resolve "
+                     f"{f_ms(lo.get((BASE, 'resolve')))} \u2192 {f_ms(hi.get((BASE, 'resolve')))} ms; the "
                      f"paper's OIT {f_ms(p_lo)} \u2192 {f_ms(p_hi)} ms.")
-    lines.append(f"- BMA-AUTO's total speedup over BASE-IS: {span(auto)}x; against BASE-IS, "
+    lines.append(f"- {BMA_AUTO}'s total speedup over {BASE}: {span(auto)}x; against {BASE}, "
                  f"{verdict([1 / a for a in auto if a])}.")
     lines += ["", "A bigger MAX_FRAGS costs the baseline little here, because no occupancy is lost to a bigger "
               "local array on a CPU; so BMA, which exists to avoid that cost, has nothing to win.", ""]

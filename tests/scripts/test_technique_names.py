@@ -1,0 +1,86 @@
+"""Scripts ask the technique table (scripts/oitbench/techniques.py, reading scripts/techniques.json) for
+technique names instead of spelling them (issue 25: the table is the one place that knows techniques).
+This test counts the string literals in scripts/*.py and scripts/oitbench/**/*.py that spell a technique
+name or a resolve scheme's prefix ("BMA-", "CS-"); docstrings and comments are left out. What remains
+is named in REMAINING, file by file, with why: the papers' own row names, which are the keys of
+results/published/. A file over its count fails, and the check is shown to fail on a probe."""
+import glob
+import io
+import json
+import os
+import re
+import tokenize
+import unittest
+
+from support import TempDirTest
+from synthetic import SCRIPTS
+
+# Files that still spell names, and how many string literals may: the papers' row names (papers.py's
+# matching table and its paper tables; the findings that read given rows of those tables).
+REMAINING = {
+    "oitbench/papers.py": 56,
+    "oitbench/findings/approx.py": 18,
+    "oitbench/findings/micro.py": 18,
+}
+
+
+def spellings():
+    """A regular expression matching any technique name or scheme prefix of the table, as a word."""
+    with open(os.path.join(SCRIPTS, "techniques.json"), encoding="utf-8") as f:
+        table = json.load(f)["techniques"]
+    words = {t["name"] for t in table if not t["name"].islower()} | {t["scheme"] + "-" for t in table if t["scheme"]}
+    words.add("CUDA-")  # the paper's name for our compute-shader scheme
+    alternatives = "|".join(re.escape(w) for w in sorted(words, key=len, reverse=True))
+    # A name that is an English word ("unsorted") counts where it is the whole literal.
+    plain = "|".join(re.escape(t["name"]) for t in table if t["name"].islower())
+    return re.compile(r"(?<![A-Za-z0-9_-])(?:" + alternatives + r")(?![A-Za-z0-9_])" +
+                      (r"|^[\"'](?:" + plain + r")[\"']$" if plain else ""))
+
+
+def literals_spelling(path, pattern):
+    """(line, literal) for each string literal of a Python file, docstrings left out, that spells a name."""
+    with open(path, encoding="utf-8") as f:
+        source = f.read()
+    found, previous = [], None
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.STRING:
+            docstring = previous in (None, tokenize.INDENT, tokenize.NEWLINE, tokenize.DEDENT) \
+                and tok.string.lstrip("rRbBuUfF")[:3] in ('"""', "'''")
+            if not docstring and pattern.search(tok.string):
+                found.append((tok.start[0], tok.string))
+        if tok.type not in (tokenize.NL, tokenize.COMMENT):
+            previous = tok.type
+    return found
+
+
+def script_files():
+    files = glob.glob(os.path.join(SCRIPTS, "*.py")) + glob.glob(os.path.join(SCRIPTS, "oitbench", "**", "*.py"),
+                                                                 recursive=True)
+    return sorted(os.path.relpath(p, SCRIPTS) for p in files)
+
+
+class NoTechniqueNamesInScripts(TempDirTest):
+    def test_scripts_read_names_from_the_table(self):
+        pattern = spellings()
+        files = script_files()
+        self.assertGreater(len(files), 30)
+        over = {}
+        for rel in files:
+            found = literals_spelling(os.path.join(SCRIPTS, rel), pattern)
+            if len(found) > REMAINING.get(rel, 0):
+                over[rel] = [f"{line}: {text}" for line, text in found]
+        self.assertEqual(over, {}, "these scripts spell technique names: ask oitbench.techniques instead")
+
+    def test_the_check_finds_names_but_not_docstrings_or_comments(self):
+        probe = self.path("probe.py")
+        with open(probe, "w", encoding="utf-8") as f:
+            f.write('"""BASE-IS in a docstring."""\n# BMA-IS in a comment\n'
+                    'def f(row):\n    """MLAB in a docstring."""\n'
+                    '    if row["technique"] == "BMA-RBS-L":\n        return f"{row} CS-*"\n'
+                    '    return "unsorted" + "SUBASE-IS" + "MLABS"\n')
+        self.assertEqual(literals_spelling(probe, spellings()),
+                         [(5, '"BMA-RBS-L"'), (6, 'f"{row} CS-*"'), (7, '"unsorted"')])
+
+
+if __name__ == "__main__":
+    unittest.main()
