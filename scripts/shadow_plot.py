@@ -14,15 +14,15 @@ import os
 import sys
 from collections import defaultdict
 
+from oitbench import cli  # first: a missing module below ends in one line (oitbench/__init__.py)
+from oitbench import results as oitres
+
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 import matplotlib  # noqa: E402
 
 matplotlib.use(os.environ["MPLBACKEND"])
 import matplotlib.pyplot as plt  # noqa: E402
-
-from oitbench import results as oitres  # noqa: E402
-from oitbench import cli  # noqa: E402
 
 PASSES = ("shadow-sort", "shadow-map")  # micro/oit/scene/shadow_map.hpp: kShadowSortPass, kShadowMapPass
 

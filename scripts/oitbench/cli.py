@@ -7,6 +7,7 @@ import math
 import os
 import sys
 
+import oitbench
 from oitbench.results import ResultsError
 
 USAGE_ERROR = 2
@@ -20,7 +21,8 @@ class InputError(Exception):
 
 def run(main, argv=None):
     """sys.exit(cli.run(main)): main's exit status; ResultsError, InputError and unreadable or unwritable
-    files print `PROG: MESSAGE` and give 2, Ctrl-C gives 130, without a traceback."""
+    files print `PROG: MESSAGE` and give 2, a third-party module this Python cannot import gives 1 (naming the
+    module, its Debian package and the interpreter), Ctrl-C gives 130, without a traceback."""
     prog = os.path.basename(sys.argv[0]) or "oitbench"
     try:
         return main() if argv is None else main(argv)
@@ -34,6 +36,9 @@ def run(main, argv=None):
     except (UnicodeError, csv.Error) as e:
         print(f"{prog}: unreadable input ({e})", file=sys.stderr)
         return USAGE_ERROR
+    except ModuleNotFoundError as e:
+        print(oitbench.missing_module_message(e), file=sys.stderr)
+        return oitbench.FAILED
     except KeyboardInterrupt:
         print(f"{prog}: interrupted", file=sys.stderr)
         return INTERRUPTED

@@ -219,5 +219,51 @@ class TheCheckFails(TempDirTest):
             read_table(path)
 
 
+MISSING = ("matplotlib", "numpy", "psycopg", "yaml")  # the third-party modules the scripts import
+
+
+def without_modules(folder):
+    """An environment whose Python cannot import MISSING: a package of each name, first on PYTHONPATH,
+    that raises ModuleNotFoundError as a missing one does."""
+    for name in MISSING:
+        os.makedirs(os.path.join(folder, name), exist_ok=True)
+        with open(os.path.join(folder, name, "__init__.py"), "w", encoding="utf-8") as f:
+            f.write(f"raise ModuleNotFoundError(\"No module named '{name}'\", name='{name}')\n")
+    return dict(os.environ, PYTHONPATH=folder)
+
+
+class AMissingModule(TempDirTest):
+    """A Python that cannot import a third-party module (another interpreter first in PATH, a package not
+    installed) ends every script in one line naming the module, its Debian package and the interpreter,
+    exit 1, never a traceback: at import time (oitbench's excepthook) and inside main (cli.run)."""
+
+    def run_without(self, *args):
+        env = without_modules(self.path("fake"))
+        return subprocess.run([PYTHON, *args], capture_output=True, text=True, env=env, timeout=120)
+
+    def test_every_script(self):
+        problems = []
+        for script in sorted(glob.glob(os.path.join(syn.SCRIPTS, "*.py"))):
+            proc = self.run_without(script, "--help")
+            name = os.path.basename(script)
+            if clean(proc) == "a Python traceback":
+                problems.append(f"{name}: a traceback\n{proc.stderr[-600:]}")
+            elif proc.returncode not in (0, 1) or (proc.returncode == 1 and "cannot import" not in proc.stderr):
+                problems.append(f"{name}: exit {proc.returncode}: {proc.stderr[-300:]}")
+        self.assertEqual(problems, [])
+
+    def test_a_figure_names_the_module_and_its_package(self):
+        good, _ = good_files(self.dir)
+        proc = self.run_without(os.path.join(syn.SCRIPTS, "plot.py"), good, "-o", self.path("out"))
+        self.assertEqual(proc.returncode, 1, proc.stderr)
+        self.assertIn("cannot import matplotlib: install python3-matplotlib", proc.stderr)
+        self.assertIn(PYTHON.rsplit("/", 1)[-1], proc.stderr)
+        self.assertEqual(clean(proc), None)
+
+    def test_the_check_fails_without_the_hook(self):
+        proc = self.run_without("-c", "import matplotlib")
+        self.assertEqual(clean(proc), "a Python traceback")
+
+
 if __name__ == "__main__":
     unittest.main(argv=sys.argv)
