@@ -6,13 +6,13 @@
 DIR holds the tidy paper tables (source,table,gpu,resolution,scene,view,technique,size,metric,unit,value);
 by default the repository's results/published (its README.md names each file's source), found from this
 script's own path, so any working directory will do. Every table prints the paper's numbers with ours
-beside them: absolute milliseconds, and speedups over the table's baseline technique (BASE-IS for
-Knowles) computed the same way for both, so the shapes compare across hardware. A paper row we have no
-measurement for shows "—".
+beside them: absolute milliseconds, and speedups over the table's baseline technique computed the same
+way for both, so the shapes compare across hardware. A paper row we have no measurement for shows "—".
 
-How our rows map to the papers' techniques is the explicit TECHNIQUES table below: a technique matches a
-row of our experiment when the row's words (variant and parameter values, split at punctuation, plus
-name=value forms) contain all the words of one of its alternatives and none of its excluded words.
+How our rows map to the papers' techniques is the explicit table results/published/tables.json (read by
+scripts/oitbench/papers.py): a technique matches a row of our experiment when the row's words (variant
+and parameter values, split at punctuation, plus name=value forms) contain all the words of one of its
+alternatives (`any`) and none of its excluded words (`exclude`).
 """
 import argparse
 import csv

@@ -1,6 +1,7 @@
 """The papers' tables beside ours: the library behind scripts/tables.py (and report.py, findings.py).
 Knowles 2014's speedups and table-1 figures are computed in knowles.py."""
 import glob
+import json
 import os
 import re
 import statistics
@@ -9,6 +10,9 @@ from oitbench import knowles
 from oitbench import results as oitres
 
 DASH = "\u2014"
+# The papers' tables and technique names (data, beside the papers' numbers it describes).
+TABLES_PATH = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                           "results", "published", "tables.json")
 
 
 def norm(text):
@@ -50,81 +54,6 @@ class Technique:
         return any(a <= row_words for a in self.alternatives)
 
 
-def T(experiment, *alternatives, exclude=(), size=None):
-    return Technique(experiment, alternatives, exclude, size)
-
-
-# Paper technique -> our experiment and the words that identify it. Knowles: IS insertion sort, IMS
-# insertion-merge sort, RBS register-based block sort (-L local, -G global), BASE/BMA the allocation.
-_IS = ("is", "ins", "insertion", "insert")
-_NOT_IS = ("ims", "merge", "rbs", "rbsl", "rbsg", "register")
-
-
-def _alloc_sort(alloc, sort_words, exclude=()):
-    alts = [f"{alloc} {s}" for s in sort_words] + [f"{alloc}{s}" for s in sort_words if " " not in s]
-    return T("oit", *alts, exclude=exclude, size="max_frags")
-
-
-TECHNIQUES = {
-    # Brüll 2018, appendix A.1 (register array index assignment) and A.3 (bubble sort): the sort experiment.
-    "naive insertion, dynamic index assignment: direct": T("sort", "direct"),
-    "naive insertion, dynamic index assignment: loop": T("sort", "loop", exclude=("unrolled",)),
-    "naive insertion, dynamic index assignment: switch": T("sort", "switch"),
-    "naive insertion, dynamic index assignment: if-else": T("sort", "ifelse", "if else", "branch"),
-    # Our variants: bubble (Listing 4.10 without its early out) and bubble-early (with it).
-    "bubble sort, no early out": T("sort", "bubble", exclude=("early", "earlyout", "earlyout=1")),
-    "bubble sort, early out": T("sort", "bubble early", "bubble earlyout", exclude=("no", "noearlyout", "earlyout=0")),
-    # A.2: insertion into a per-pixel array with and without early out: the insert experiment.
-    # A.2 inserts the Village's fragments: our random keys, not the back/front worst and best cases.
-    "MLAB insertion x128, no early out": T("insert", "noearlyout", "no early out", "earlyout=0", "early_out=0",
-                                           exclude=("keys=back", "keys=front")),
-    "MLAB insertion x128, early out": T("insert", "earlyout", "early out", "earlyout=1", "early_out=1",
-                                        exclude=("no", "noearlyout", "earlyout=0", "keys=back", "keys=front")),
-    "MLAB insertion x16, no early out": T("insert", "noearlyout", "no early out", "earlyout=0", "early_out=0",
-                                          exclude=("keys=back", "keys=front")),
-    "MLAB insertion x16, early out": T("insert", "earlyout", "early out", "earlyout=1", "early_out=1",
-                                       exclude=("no", "noearlyout", "earlyout=0", "keys=back", "keys=front")),
-    # A.4/A.5: the stencil experiment (UMLAB only where our rows say umlab).
-    "MLAB no stencil": T("stencil", "nostencil", "no stencil", "stencil=0", "stencil=off", "none",
-                         exclude=("umlab",)),
-    "MLAB stencil": T("stencil", "stencil", "stencil=1", "stencil=on",
-                      exclude=("no", "nostencil", "stencil=0", "stencil=off", "umlab")),
-    "UMLAB no stencil": T("stencil", "umlab nostencil", "umlab no stencil", "umlab stencil=0"),
-    "UMLAB stencil": T("stencil", "umlab stencil", "umlab stencil=1", exclude=("no", "nostencil", "stencil=0")),
-    # 4.1: storage layouts.
-    "MLAB texture3d": T("layout", "texture3d", "texture 3d", "tex3d", "image3d"),
-    "MLAB ssbo": T("layout", "ssbo", "buffer", exclude=("interleaved", "interleave")),
-    "MLAB interleaved-ssbo 2x4": T("layout", "interleaved", "interleave"),
-    # Knowles 2013 (BMA): OIT is the unsorted-allocation baseline with insertion sort.
-    "OIT": _alloc_sort("base", _IS, exclude=_NOT_IS + ("bma",)),
-    "BMA-OIT": _alloc_sort("bma", _IS, exclude=_NOT_IS),
-    # Knowles 2014.
-    "BASE-IS": _alloc_sort("base", _IS, exclude=_NOT_IS + ("bma",)),
-    "BASE-IMS": _alloc_sort("base", ("ims", "merge"), exclude=("bma", "rbs")),
-    "BASE-RBS-L": _alloc_sort("base", ("rbs", "rbsl", "rbs l", "register"), exclude=("bma", "g", "global", "rbsg")),
-    "RBS-G": T("oit", "rbsg", "rbs g", "rbs global", exclude=("bma",), size="max_frags"),
-    "BMA-IS": _alloc_sort("bma", _IS, exclude=_NOT_IS),
-    "BMA-IMS": _alloc_sort("bma", ("ims", "merge"), exclude=("rbs",)),
-    "BMA-RBS-L": _alloc_sort("bma", ("rbs", "rbsl", "rbs l", "register"), exclude=("g", "global", "rbsg")),
-    # CUDA-IS, CUDA-IMS, CUDA-RBS-L: our CS-* rows stand in for them.
-    "CUDA-IS": T("oit", "cs is", "csis", size="max_frags"),
-    "CUDA-IMS": T("oit", "cs ims", "csims", size="max_frags"),
-    "CUDA-RBS-L": T("oit", "cs rbs l", "csrbsl", size="max_frags"),
-    # Brüll 2018 tables 5.1 and 6.1-6.3: approximate techniques of the oit experiment (size = nodes).
-    "MLAB": T("oit", "mlab", size="nodes"),
-    "UMLAB": T("oit", "umlab", size="nodes"),
-    "AT": T("oit", "at", size="nodes"),
-    "UAT": T("oit", "uat", size="nodes"),
-    "LAAT": T("oit", "laat", size="nodes"),
-    "HAT": T("oit", "hat", size="nodes"),
-    "UHAT": T("oit", "uhat", size="nodes"),
-    # Münstermann 2018 figure 1: MBOIT variants (size = moments, the reals beside b0), MLAB (above) and
-    # depth peeling, DP, the peel technique (rows without it print "—").
-    "MBOIT power 16-bit": T("oit", "mboit momentkind=power momentbits=16", size="moments"),
-    "MBOIT trigonometric 32-bit": T("oit", "mboit momentkind=trigonometric momentbits=32", size="moments"),
-    "DP": T("oit", "dp"),
-}
-
 # Which of our passes a paper metric is.
 METRIC_PASSES = {
     "total_time": ("total",),
@@ -143,7 +72,7 @@ STAND_INS = {"powerplant": "enginegrid", "atrium": "house"}
 
 class PaperTable:
     def __init__(self, name, source, table, title, baseline, kind="times", any_scene=False, presets=(),
-                 baseline_own_size=False):
+                 baseline_own_size=False, compare=(), ours=None):
         self.name, self.source, self.table, self.title, self.baseline, self.kind = \
             name, source, table, title, baseline, kind
         # The baseline row has a size of its own (MLAB's 4 layers against MBOIT's 6 moments): paper and
@@ -153,48 +82,40 @@ class PaperTable:
         self.any_scene = any_scene
         # The presets that rerun this table: where the given CSVs hold rows of one of them, only those
         # rows count, so runs of other grids (other resolutions, other block sizes) never mix in.
-        self.presets = presets
+        self.presets = tuple(presets)
+        # The pairs of rows FINDINGS.md sets side by side, [row, against, our storage, its storage], and the
+        # paper row for each of our layouts (Table 4.1).
+        self.compare = [tuple(c) for c in compare]
+        self.ours = dict(ours or {})
 
 
-TABLES = [
-    PaperTable("bruell-A.1", "bruell2018-thesis", "A.1", "Brüll 2018 A.1: index assignment in naive insertion sort",
-               "naive insertion, dynamic index assignment: direct", presets=("bruell2018-sorting",)),
-    PaperTable("bruell-A.2", "bruell2018-thesis", "A.2", "Brüll 2018 A.2: MLAB insertion with and without early out",
-               "MLAB insertion x{}, no early out", presets=("bruell2018-sorting",)),
-    PaperTable("bruell-A.3", "bruell2018-thesis", "A.3", "Brüll 2018 A.3: bubble sort with and without early out",
-               "bubble sort, no early out", presets=("bruell2018-sorting",)),
-    PaperTable("bruell-A.4", "bruell2018-thesis", "A.4", "Brüll 2018 A.4: stencil-masked MLAB", "MLAB no stencil",
-               presets=("bruell2018-stencil",)),
-    PaperTable("bruell-A.5", "bruell2018-thesis", "A.5", "Brüll 2018 A.5: stencil-masked UMLAB", "UMLAB no stencil",
-               presets=("bruell2018-stencil",)),
-    PaperTable("bruell-4.1", "bruell2018-thesis", "4.1", "Brüll 2018 4.1: MLAB storage layouts", "MLAB ssbo",
-               presets=("bruell2018-storage",)),
-    PaperTable("bruell-5.1", "bruell2018-thesis", "5.1", "Brüll 2018 5.1: MLAB vs UMLAB (ours: median over our scenes)",
-               "MLAB", any_scene=True, presets=("bruell2018-approx",)),
-    PaperTable("bruell-6.1", "bruell2018-thesis", "6.1", "Brüll 2018 6.1: AT vs UAT (ours: median over our scenes)",
-               "AT", any_scene=True, presets=("bruell2018-approx",)),
-    PaperTable("bruell-6.2", "bruell2018-thesis", "6.2", "Brüll 2018 6.2: AT vs LAAT (ours: median over our scenes)",
-               "AT", any_scene=True, presets=("bruell2018-approx",)),
-    PaperTable("bruell-6.3", "bruell2018-thesis", "6.3", "Brüll 2018 6.3: HAT vs UHAT (ours: median over our scenes)",
-               "HAT", any_scene=True, presets=("bruell2018-approx",)),
-    PaperTable("mboit-fig1", "muenstermann2018-mboit", "1",
-               "Münstermann 2018 figure 1: MBOIT vs MLAB vs depth peeling (ours: median over our scenes)", "MLAB",
-               any_scene=True, presets=("muenstermann2018-mboit",), baseline_own_size=True),
-    PaperTable("sintorn-poster", "sintorn-hair-poster", "results",
-               "Sintorn et al. poster: 256-slice radix sort of hair line segments (ours: the lines experiment)",
-               "", kind="lines", presets=("sintorn-lines",)),
-    PaperTable("knowles2014-1", "knowles2014-rbs", "1", "Knowles 2014 table 1: speedups over BASE-IS, all scenes",
-               "BASE-IS", kind="summary", presets=("knowles2014",)),
-    PaperTable("knowles2014-2", "knowles2014-rbs", "2", "Knowles 2014 table 2: total and resolve times", "BASE-IS",
-               presets=("knowles2014",)),
-    PaperTable("knowles2014-3", "knowles2014-rbs", "3", "Knowles 2014 table 3: speedups over BASE-IS", "BASE-IS",
-               kind="speedups", presets=("knowles2014",)),
-    PaperTable("knowles2013-1", "knowles2013-bma", "1",
-               "Knowles 2013 table 1: BMA speedup per interval (ours: BMA-IS over BASE-IS at that size)", "OIT",
-               kind="speedups", presets=("knowles2013",)),
-    PaperTable("knowles2013-2", "knowles2013-bma", "2", "Knowles 2013 table 2: OIT and BMA-OIT times", "OIT",
-               presets=("knowles2013",)),
-]
+def table(name):
+    """The paper table named `name` (PaperTable.name)."""
+    return next(t for t in TABLES if t.name == name)
+
+
+def load_tables(path=TABLES_PATH):
+    """The papers' tables and technique names of results/published/tables.json: (TABLES, TECHNIQUES).
+    ResultsError names the file and what is wrong with it."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except OSError as e:
+        raise oitres.ResultsError(f"{path}: cannot read ({e.strerror or e})") from e
+    except (UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise oitres.ResultsError(f"{path}:{getattr(e, 'lineno', 1)}: not JSON ({getattr(e, 'msg', e)})") from e
+    try:
+        tables = [PaperTable(**t) for t in data["tables"]]
+        techniques = {name: Technique(t["experiment"], t["any"], t.get("exclude", ()), t.get("size"))
+                      for name, t in data["techniques"].items()}
+    except (KeyError, TypeError, AttributeError) as e:
+        raise oitres.ResultsError(f"{path}: not the papers' tables ({type(e).__name__}: {e})") from e
+    return tables, techniques
+
+
+# Paper technique -> our experiment and the words that identify it, and the papers' tables: data, in
+# results/published/tables.json (its README says what each field means).
+TABLES, TECHNIQUES = load_tables()
 
 
 def row_words(row, params):
@@ -410,16 +331,16 @@ def lines_layout(table, rows):
 
 
 def summary_rows(table, rows, ours):
-    """Knowles 2014 table 1: average and best speedup over BASE-IS; ours over our own cases."""
+    """Knowles 2014 table 1: average and best speedup over its baseline; ours over our own cases."""
     out = []
     for r in rows:
         tech = r["technique"]
         speedups = []
-        base_rule = TECHNIQUES["BASE-IS"]
+        base_rule = TECHNIQUES[knowles.BASELINE]
         for size, scene, view, w, h in ours.cases(base_rule.experiment, base_rule.size_column):
             if tech not in TECHNIQUES:
                 break
-            base, _ = ours.lookup("BASE-IS", size, scene or "all", metric_base(r["metric"]), view)
+            base, _ = ours.lookup(knowles.BASELINE, size, scene or "all", metric_base(r["metric"]), view)
             mine, _ = ours.lookup(tech, size, scene or "all", metric_base(r["metric"]), view)
             if base and mine:
                 speedups.append(base / mine)
@@ -447,7 +368,7 @@ def table_layout(table, rows, ours, paper_rows):
     gpu = next((r["gpu"] for r in paper_rows if r["source"] == table.source and r["table"] == table.table), "?")
     res = next((r["resolution"] for r in paper_rows if r["source"] == table.source and r["table"] == table.table
                 and r["resolution"]), "")
-    exp = TECHNIQUES.get(table.baseline.format("16"), TECHNIQUES.get("BASE-IS")).experiment
+    exp = TECHNIQUES.get(table.baseline.format("16"), TECHNIQUES.get(knowles.BASELINE)).experiment
     mine = ours.describe(exp)
     baseline_text = ("the same scene's no-early-out row" if "{}" in table.baseline else table.baseline)
     notes = [f"Paper: {gpu}{', ' + res if res else ''}. Ours: `{exp}` on " +
@@ -493,7 +414,7 @@ def figure_hardware(table, ours, paper_rows):
     mine = [r for r in paper_rows if r["source"] == table.source and r["table"] == table.table]
     gpu = next((r["gpu"] for r in mine if r.get("gpu")), "?")
     res = next((r["resolution"] for r in mine if r.get("resolution")), "")
-    exp = TECHNIQUES.get(table.baseline.format("16"), TECHNIQUES.get("BASE-IS")).experiment
+    exp = TECHNIQUES.get(table.baseline.format("16"), TECHNIQUES.get(knowles.BASELINE)).experiment
     if table.kind == "lines":
         exp = "lines"
     return gpu + (f", {res}" if res else ""), ours.scoped(table.presets).describe(exp) or "\u2014"

@@ -81,6 +81,15 @@ class Techniques(unittest.TestCase):
         with self.assertRaisesRegex(oitres.ResultsError, r"techniques with family=exact, expected one"):
             techniques.find(family="exact")
 
+    def test_the_papers_tables_are_data_and_a_broken_file_is_refused_naming_it(self):
+        from oitbench import papers
+        self.assertIn(techniques.BASELINE, papers.TECHNIQUES)
+        self.assertEqual(papers.table("bruell-A.4").compare, [("MLAB stencil", "MLAB no stencil")])
+        with self.assertRaisesRegex(oitres.ResultsError, r"nosuch\.json: cannot read"):
+            papers.load_tables("nosuch.json")
+        with self.assertRaisesRegex(oitres.ResultsError, r"techniques\.json: not the papers' tables"):
+            papers.load_tables(os.path.join(SCRIPTS, "techniques.json"))
+
     def test_a_broken_export_is_refused_naming_it(self):
         with self.assertRaisesRegex(oitres.ResultsError, r"nosuch\.json: cannot read"):
             techniques.load("nosuch.json")

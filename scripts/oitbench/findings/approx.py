@@ -49,10 +49,9 @@ def section_approx(f):
     def t(tech, nodes, storage, scene):
         return f.median(name, "oit", technique=tech, nodes=nodes, storage=storage, scene=scene)
 
-    comps = [("UMLAB/MLAB (Table 5.1)", "5.1", "UMLAB", "MLAB", "interleaved", "interleaved"),
-             ("UAT/AT (Table 6.1)", "6.1", "UAT", "AT", "interleaved", "interleaved"),
-             ("LAAT/AT (Table 6.2)", "6.2", "LAAT", "AT", "texture3d", "interleaved"),
-             ("UHAT/HAT (Table 6.3)", "6.3", "UHAT", "HAT", "interleaved", "interleaved")]
+    # The thesis's comparisons (results/published/tables.json): which technique against which, in which storage.
+    comps = [(f"{a}/{b} (Table {pt.table})", pt.table, a, b, sa, sb) for pt in tables.TABLES
+             if pt.source == "bruell2018-thesis" and name in pt.presets for a, b, sa, sb in pt.compare]
     body, found = [], {}
     for label, tab, a, b, sa, sb in comps:
         nodes = sizes_of([r for r in rows if r["technique"] == a], "nodes")
@@ -66,7 +65,8 @@ def section_approx(f):
             found.setdefault(a, []).extend(rs)
             row.append(" / ".join(f_x(x) for x in rs))
         body.append(row)
-    lines += ["Time ratios beside the thesis's (GTX 1080, 800x800): ours with the interleaved layout, LAAT "
+    in_texture = " ".join(a for _, _, a, _, sa, _ in comps if sa == "texture3d")
+    lines += [f"Time ratios beside the thesis's (GTX 1080, 800x800): ours with the interleaved layout, {in_texture} "
               "with the 3D texture, as the thesis ran them.", ""]
     lines += table(["ratio", "nodes", "thesis Powerplant", "thesis Village"] + [f"llvmpipe {s}" for s in scenes],
                    body, [False, False, True, True] + [True] * len(scenes))
@@ -76,10 +76,11 @@ def section_approx(f):
               for ps in ("powerplant", "village") for n in sizes_of([r for r in rows if r["technique"] == a], "nodes")]
         lines.append(f"- {a} against {b}: {span(found.get(a, []))}x here, {verdict(found.get(a, []))}; the thesis "
                      f"{span(th)}x, {verdict(th)}.")
-    tex = [ratio(t("UMLAB", n, "texture3d", s), t("MLAB", n, "texture3d", s))
-           for s in scenes for n in sizes_of([r for r in rows if r["technique"] == "UMLAB"], "nodes")]
+    _, _, a, b, _, _ = comps[0]  # Table 5.1's pair once more, both in the 3D texture
+    tex = [ratio(t(a, n, "texture3d", s), t(b, n, "texture3d", s))
+           for s in scenes for n in sizes_of([r for r in rows if r["technique"] == a], "nodes")]
     if any(tex):
-        lines.append(f"- UMLAB against MLAB in the 3D texture: {span(tex)}x, {verdict(tex)}.")
+        lines.append(f"- {a} against {b} in the 3D texture: {span(tex)}x, {verdict(tex)}.")
     for s in scenes:
         exact = {k[0]: ms(v[s]) for k, v in cases.items() if s in v and k[0] not in plot.OIT_APPROX}
         ppa = {approx_label(v[s]): ms(v[s]) for k, v in cases.items() if s in v and k[0] in PER_PIXEL_ARRAY}

@@ -2,6 +2,7 @@
 and stencil tables."""
 import statistics
 
+from oitbench import papers
 from oitbench import results as oitres
 from oitbench.findings.common import (
     DASH, f_ms, f_pct, f_x, missing, ms, num, ratio, res, sizes_of, span, table, verdict)
@@ -108,8 +109,8 @@ def section_sort(f):
          "bubble sort, early out", "bubble sort, no early out",
          "total_time")])
     body += paper_ratio_rows(f.paper_pairs(name, "bruell-A.2"), [
-        ("A.2: insertion with early out / without (Village x128; ours: random keys)", "village",
-         "MLAB insertion x128, early out", "MLAB insertion x128, no early out", "total_time")])
+        ("A.2: insertion with early out / without (Village x128; ours: random keys)", "village", a, b, "total_time")
+        for a, b in papers.table("bruell-A.2").compare])
     lines += table(["comparison", "n", "thesis", "llvmpipe"], body, [False, False, False, False])
 
     def t(variant, memory, n):
@@ -206,8 +207,8 @@ def section_layout(f):
     nodes = sizes_of(layout, "nodes")
     pairs = f.paper_pairs(name, "bruell-4.1")
     scenes = sorted({k[2] for k in pairs}, key=["powerplant", "village", "sanmiguel"].index)
-    thesis = {"texture3d": "MLAB texture3d", "interleaved-2x4-a1": "MLAB interleaved-ssbo 2x4",
-              "interleaved-2x4-a4": "MLAB interleaved-ssbo 2x4"}
+    paper = papers.table("bruell-4.1")
+    thesis = paper.ours  # our layout -> the thesis's row
 
     def lt(lay, n, src=name):
         return f.median(src, "layout", layout=lay, nodes=n)
@@ -220,12 +221,13 @@ def section_layout(f):
             th = []
             for s in scenes:
                 a, b = pairs.get((thesis.get(lay, ""), str(n), s, "", "total_time")), \
-                    pairs.get(("MLAB ssbo", str(n), s, "", "total_time"))
+                    pairs.get((paper.baseline, str(n), s, "", "total_time"))
                 th.append(f_x(ratio(a["paper"], b["paper"])) if a and b else DASH)
             row.append(" / ".join(th))
         body.append(row)
     lines += [f"`presets/{name}.csv` ({res(r0)}, {r0['layers']} layers, {f.reps(name, r0)}): time / "
-              f"`ssbo` of the `total` medians; the thesis's MLAB times ({' / '.join(scenes)}) likewise.", ""]
+              f"`ssbo` of the `total` medians; the thesis's {paper.baseline.split()[0]} times ({' / '.join(scenes)}) "
+              "likewise.", ""]
     lines += table(["layout"] + [f"nodes {n}" for n in nodes] + [f"thesis, {n} nodes" for n in nodes], body)
     for lay, label in (("texture3d", "`texture3d` (image load/store)"), ("texbuffer", "The buffer-texture read path")):
         rs = [ratio(lt(lay, n), lt("ssbo", n)) for n in nodes]
@@ -320,16 +322,18 @@ def section_stencil(f):
     lines += table(["coverage"] + [f"{rv} {p}" for rv in resolves for p in ("resolve", "total")], body)
     a4 = f.paper_pairs(name, "bruell-A.4")
     a5 = f.paper_pairs(name, "bruell-A.5")
-    th_full = [ratio(a4[k]["paper"], a4[("MLAB no stencil",) + k[1:]]["paper"]) for k in a4
-               if k[0] == "MLAB stencil" and k[4] == "fullscreen_pass_time" and ("MLAB no stencil",) + k[1:] in a4]
-    th_tot = [ratio(a4[k]["paper"], a4[("MLAB no stencil",) + k[1:]]["paper"]) for k in a4
-              if k[0] == "MLAB stencil" and k[4] == "total_time" and ("MLAB no stencil",) + k[1:] in a4]
-    th_u = [ratio(a5[k]["paper"], a5[("UMLAB no stencil",) + k[1:]]["paper"]) for k in a5
-            if k[0] == "UMLAB stencil" and ("UMLAB no stencil",) + k[1:] in a5]
+    (m4, u4), = papers.table("bruell-A.4").compare  # the masked row and the unmasked one
+    (m5, u5), = papers.table("bruell-A.5").compare
+    th_full = [ratio(a4[k]["paper"], a4[(u4,) + k[1:]]["paper"]) for k in a4
+               if k[0] == m4 and k[4] == "fullscreen_pass_time" and (u4,) + k[1:] in a4]
+    th_tot = [ratio(a4[k]["paper"], a4[(u4,) + k[1:]]["paper"]) for k in a4
+              if k[0] == m4 and k[4] == "total_time" and (u4,) + k[1:] in a4]
+    th_u = [ratio(a5[k]["paper"], a5[(u5,) + k[1:]]["paper"]) for k in a5
+            if k[0] == m5 and (u5,) + k[1:] in a5]
     if th_full:
-        lines.append(f"- The thesis (Village, every node count of Tables A.4/A.5): MLAB's full-screen pass with "
-                     f"the mask takes {span(th_full)}x its time without, its total {span(th_tot)}x; UMLAB's total "
-                     f"{span(th_u)}x.")
+        lines.append(f"- The thesis (Village, every node count of Tables A.4/A.5): {m4.split()[0]}'s full-screen pass "
+                     f"with the mask takes {span(th_full)}x its time without, its total {span(th_tot)}x; "
+                     f"{m5.split()[0]}'s total {span(th_u)}x.")
     lines.append(f"- Here the stencil writes change the capture pass by {span([c for c in capture if c], f_pct)} "
                  f"(with them: {verdict(capture)}); the `clear` pass, the same with and without the mask, is "
                  f"{span(clear)} of the unmasked total, which bounds what the total can gain.")
