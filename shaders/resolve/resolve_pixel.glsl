@@ -59,15 +59,20 @@ vec3 resolve_pixel(uint node) {
 #if defined(SORT_ORDER_CHECK)
   // The list's order, checked while loading in O(n): `ordered` while no pair is out of far-to-near
   // order, `reversed` while no pair is out of near-to-far order.
+  // The previous fragment stays in a register: reading frags[n - 1] back from the local array is a
+  // gather per fragment where the JIT vectorises over pixels (llvmpipe with AVX-512: docs/drivers.md).
   bool ordered = true, reversed = true;
+  FRAG_T prev;
 #endif
   while (FRAG_VALID(node) && n < MAX_FRAGS) {  // deeper pixels are truncated (counted on the host)
-    frags[n] = FRAG_LOAD(node);
+    FRAG_T f = FRAG_LOAD(node);
+    frags[n] = f;
 #if defined(SORT_ORDER_CHECK)
     if (n > 0) {
-      ordered = ordered && !SORT_GT(frags[n - 1], frags[n]);
-      reversed = reversed && !SORT_GT(frags[n], frags[n - 1]);
+      ordered = ordered && !SORT_GT(prev, f);
+      reversed = reversed && !SORT_GT(f, prev);
     }
+    prev = f;
 #endif
     ++n;
     node = FRAG_NEXT(node);
