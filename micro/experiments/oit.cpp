@@ -21,6 +21,7 @@
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
 #include "oit/techniques.hpp"
+#include "oit/wavelets/wavelets.hpp"
 
 namespace oitbench {
 
@@ -179,6 +180,7 @@ class OitExperiment final : public Experiment {
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     for (auto& a : peel_params()) ps.push_back(std::move(a));
     for (auto& a : moment_params()) ps.push_back(std::move(a));
+    for (auto& a : wavelet_params()) ps.push_back(std::move(a));
     // Each technique parameter is scoped to the techniques that read it (the technique table says
     // which), so a row carries only its own.
     for (auto& spec : ps)
@@ -251,7 +253,7 @@ class OitExperiment final : public Experiment {
          "MBOIT: fraction of fragments whose pixel's moments were inconsistent at that bias (rounded "
          "storage), so the reconstruction raised it tenfold (up to 1000x; the CPU model's count)"},
         {"model_off_channels", T::Integer, "",
-         "MBOIT: channel values more than the tolerance from the CPU model (up to 1% allowed)"},
+         "MBOIT, WOIT: channel values more than the tolerance from the CPU model (up to 1% allowed)"},
         {"msaa_samples", T::Integer, "", "STOCHASTIC: MSAA samples per pass (samples_per_pixel / passes)"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());

@@ -9,6 +9,7 @@
 #include "oit/moments/moments.hpp"
 #include "oit/peel/peel.hpp"
 #include "oit/scene/scene.hpp"
+#include "oit/wavelets/wavelets.hpp"
 
 namespace oitbench::oit {
 
@@ -94,6 +95,8 @@ std::vector<Technique> build_table() {
       approx("LAAT", A::Laat, kArrays + kGuarded),
       approx("WBOIT", A::Wboit, kFlicker + kGuarded + Params{"wboit_weight"}),
       other("MBOIT", F::Moments, 0, kFlicker + Params{"moments", "moment_kind", "moment_bits"}, make_mboit_case),
+      other("WOIT", F::Moments, 1, kFlicker + Params{"wavelet_coeffs", "wavelet_basis", "wavelet_bits"},
+            make_woit_case),
       other("STOCHASTIC", F::Stochastic, 0, kFlicker + Params{"samples_per_pixel"}, make_stochastic_case),
       approx("unsorted", A::Unsorted, kFlicker),
   };

@@ -600,6 +600,10 @@ def oit_label(row):
         t += f"/{row['moments']}{'t' if row.get('moment_kind') == 'trigonometric' else 'p'}"
         if row.get("moment_bits") == "16":
             t += "/16"
+    if techniques.reads(name, "wavelet_coeffs") and row.get("wavelet_coeffs"):  # /16: 16 coefficients; /16 bits
+        t += f"/{row['wavelet_coeffs']}"
+        if row.get("wavelet_bits") == "16":
+            t += "/16"
     if techniques.reads(name, "samples_per_pixel") and row.get("samples_per_pixel"):
         t += f"/{row['samples_per_pixel']}"
     # Fragment formats other than the papers' (rgba8, window depth) are part of the case's name.

@@ -143,7 +143,7 @@ class Effects : public GlTest {};
 
 TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
   for (const char* technique : {"BASE-IS", "BMA-IS", "CS-IS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted", "HT",
-                                "DP", "DDP", "MBOIT", "STOCHASTIC"}) {
+                                "DP", "DDP", "MBOIT", "WOIT", "STOCHASTIC"}) {
     std::map<std::string, std::string> p = {
         {"scene", "house-opaque"}, {"view", "V1"}, {"technique", technique}, {"detail", "full"}};
     p["effects"] = "transparency";
@@ -163,7 +163,7 @@ TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
 
 TEST_F(Effects, DroppingTheOpaqueDepthTestFailsEveryTechnique) {
   for (const char* technique : {"BASE-IS", "BMA-RBS-L", "CS-IMS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted", "HT",
-                                "DP", "DDP", "MBOIT", "STOCHASTIC"}) {
+                                "DP", "DDP", "MBOIT", "WOIT", "STOCHASTIC"}) {
     std::map<std::string, std::string> p = {{"scene", "house-opaque"},
                                             {"view", "V1"},
                                             {"technique", technique},
