@@ -125,7 +125,7 @@ int list_command(const Registry& registry, const ListOptions& o, const ContextOp
       std::printf("    %-10s %s\n               default: %s%s\n               allowed: %s\n", p.name.c_str(),
                   p.description.c_str(), join(p.defaults).c_str(),
                   p.quick.empty() ? "" : ("  (--quick: " + join(p.quick) + ")").c_str(), p.allowed_text().c_str());
-      if (!p.applies_when.empty()) std::printf("               applies where: %s\n", p.scope_text().c_str());
+      if (!p.scope_text().empty()) std::printf("               applies where: %s\n", p.scope_text().c_str());
     }
     std::printf("\n");
   }

@@ -91,7 +91,7 @@ bool ParamSpec::applies(const ParamSet& p) const {
     const auto& v = p.get(c.param);
     if (std::find(c.values.begin(), c.values.end(), v) == c.values.end()) return false;
   }
-  return true;
+  return !applies_if || applies_if(p);
 }
 
 std::string ParamSpec::scope_text() const {
@@ -101,6 +101,7 @@ std::string ParamSpec::scope_text() const {
     for (const auto& v : c.values) values += (values.empty() ? "" : ", ") + v;
     s += (s.empty() ? "" : " and ") + c.param + " in {" + values + "}";
   }
+  if (applies_if) s += (s.empty() ? "" : " and ") + applies_if_text;
   return s;
 }
 
@@ -237,7 +238,7 @@ std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
         selected += (selected.empty() ? "" : ", ") + cond.param + "=" + list;
       }
       throw UsageError("parameter '" + spec.name + "' applies only where " + spec.scope_text() +
-                       "; no selected case has that (" + selected + ")");
+                       "; no selected case has that" + (selected.empty() ? "" : " (" + selected + ")"));
     }
   return cases;
 }

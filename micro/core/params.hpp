@@ -1,6 +1,7 @@
 #pragma once
 // Experiment parameters: their specs (what `oitbench list` prints and the CLI validates),
 // one case's values, and the cartesian product of value lists (like hyperfine's --parameter-list).
+#include <functional>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -34,6 +35,11 @@ struct ParamSpec {
     std::vector<std::string> values;
   };
   std::vector<Condition> applies_when = {};
+  // A condition no parameter list can say (the oit experiment's shadow parameters: the case's scene and
+  // effects hold self-shadowing), and its text for messages; unset: none. Scoped like applies_when: a
+  // case it does not hold for runs the first default, and such cases are kept once.
+  std::function<bool(const ParamSet&)> applies_if = {};
+  std::string applies_if_text = {};
 
   ParamSpec& only_when(std::string param, std::vector<std::string> values) {
     applies_when.push_back({std::move(param), std::move(values)});

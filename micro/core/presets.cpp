@@ -176,6 +176,9 @@ Preset parse_preset(const std::string& name, const std::string& path, const std:
         req.quick = v.get<bool>();
       } else if (k == "hardware") {
         req.hardware = hardware_sizes(v, at, in({k}));
+        if (v.contains("set"))
+          req.hardware->origin = path + ":" + line_column(text, json_path_offset(text, in({k, "set"}))) + ": runs[" +
+                                 std::to_string(i) + "].hardware.set";
       } else if (k == "baseline") {  // {"technique": "BASE-IS"}: the case the rows' speedups divide by
         if (!v.is_object() || v.empty()) throw at.error(in({k}), "expected an object of parameter values");
         for (const auto& [pk, pv] : v.items()) req.baseline[pk] = to_value(pv, at, in({k, pk}));

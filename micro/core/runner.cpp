@@ -783,6 +783,12 @@ RunSize resolve_run_size(const RunRequest& r, const Experiment& e, const RunOpti
 }
 
 namespace {
+// An error of a preset entry's hardware set: check_requests names the set's own place, not the entry's.
+class HardwareSetError : public UsageError {
+ public:
+  using UsageError::UsageError;
+};
+
 // A baseline no case of the grid has would name a case that never runs: refused.
 void check_baseline_in_grid(const std::map<std::string, std::string>& baseline, const std::vector<ParamSet>& cases) {
   if (baseline.empty()) return;
@@ -820,15 +826,16 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
       if (it == specs.end()) {
         std::string valid;
         for (const auto& s : specs) valid += (valid.empty() ? "" : ", ") + s.name;
-        throw UsageError("experiment '" + e->name() + "' has no parameter '" + name + "'" +
-                         (hardware && r.hardware->set.count(name) ? " (in its hardware set)" : "") +
-                         "; valid parameters: " + valid);
+        const std::string what = "experiment '" + e->name() + "' has no parameter '" + name + "'";
+        if (hardware && r.hardware->set.count(name))
+          throw HardwareSetError(what + " (in its hardware set); valid parameters: " + valid);
+        throw UsageError(what + "; valid parameters: " + valid);
       }
       try {
         for (const auto& v : values) it->check(v, e->name());
       } catch (const UsageError& err) {
         if (!hardware || !r.hardware->set.count(name)) throw;
-        throw UsageError(std::string("hardware.set: ") + err.what());
+        throw HardwareSetError(err.what());
       }
     }
     try {
@@ -838,8 +845,9 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
       check_baseline_in_grid(r.baseline, cases);
       most = std::max(most, cases.size());
     } catch (const UsageError& err) {
-      throw UsageError("experiment '" + e->name() + "'" + (hardware ? " on a hardware driver" : "") + ": " +
-                       err.what());
+      // The software grid passed: on hardware, what differs is the hardware set.
+      if (hardware) throw HardwareSetError("experiment '" + e->name() + "' on a hardware driver: " + err.what());
+      throw UsageError("experiment '" + e->name() + "': " + err.what());
     }
   }
   return most;
@@ -859,6 +867,11 @@ void check_requests(const Registry& registry, const std::vector<RunRequest>& req
   for (const auto& r : requests) {
     try {
       total += check_request(registry, r, quick, max_cases);
+    } catch (const HardwareSetError& e) {
+      const std::string at = r.hardware && !r.hardware->origin.empty() ? r.hardware->origin
+                             : r.origin.empty()                        ? std::string("hardware.set")
+                                                                       : r.origin + ": hardware.set";
+      throw UsageError(at + ": " + e.what());
     } catch (const UsageError& e) {
       if (r.origin.empty()) throw;
       throw UsageError(r.origin + ": " + e.what());

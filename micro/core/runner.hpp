@@ -24,6 +24,7 @@ struct HardwareSizes {
   // Parameter lists that replace the entry's own on hardware drivers (a grid a software renderer cannot
   // afford, e.g. 64 peeled layers of 12.76 M triangles); a --set of the same name replaces both.
   std::map<std::string, std::vector<std::string>> set{};
+  std::string origin{};  // where its "set" is, "presets/x.json:7:20: runs[0].hardware.set": what its errors name
 };
 
 // One experiment to run, from the command line or from one entry of a preset.

@@ -3,6 +3,8 @@
 // as data (scenes/*.json). This file declares the parameter grid; the cases live in micro/oit/
 // so that `oitbench view` renders with the same code.
 #include <algorithm>
+#include <functional>
+#include <map>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -28,6 +30,24 @@ namespace oitbench {
 namespace {
 
 using namespace oit;
+
+// Whether a case's scene and effects hold self-shadowing, each (scene, effects) loaded once. A scene
+// that does not load counts as holding it: check_cases reports it (FILE:LINE:COLUMN).
+std::function<bool(const ParamSet&)> holds_self_shadowing() {
+  auto known = std::make_shared<std::map<std::pair<std::string, std::string>, bool>>();
+  return [known](const ParamSet& c) {
+    if (!c.has("scene") || !c.has("effects")) return true;
+    const auto key = std::make_pair(c.get("scene"), c.get("effects"));
+    if (auto it = known->find(key); it != known->end()) return it->second;
+    bool holds = true;
+    try {
+      const auto effects = select_effects(load_scene(key.first), key.second);
+      holds = std::find(effects.begin(), effects.end(), "self-shadowing") != effects.end();
+    } catch (const std::exception&) {
+    }
+    return (*known)[key] = holds;
+  };
+}
 
 std::vector<std::string> techniques_where(bool Technique::*member) {
   std::vector<std::string> out;
@@ -159,6 +179,14 @@ class OitExperiment final : public Experiment {
                                 ParamSpec::Kind::Integer,
                                 8,
                                 4096};
+    // Read only where the case's scene and effects hold self-shadowing: elsewhere unused (empty in the
+    // rows), so a list of them does not multiply those cases in a grid that mixes scenes, and a list
+    // where no case holds it is a usage error (expand_grid).
+    const auto shadowing = holds_self_shadowing();
+    for (ParamSpec* s : {&shadow_slices, &shadow_resolution}) {
+      s->applies_if = shadowing;
+      s->applies_if_text = "the case's scene and effects hold self-shadowing";
+    }
     ExactParams x = exact_params();
     std::vector<ParamSpec> ps = {scene,
                                  view,
@@ -264,7 +292,6 @@ class OitExperiment final : public Experiment {
   // a scene that does not load is left to the case (its FILE:LINE:COLUMN error).
   void check_cases(const std::vector<ParamSet>& cases) const override {
     std::set<std::tuple<std::string, std::string, std::string>> seen;
-    bool shadowing = false;
     for (const auto& c : cases) {
       if (!seen.insert({c.get("scene"), c.get("view"), c.get("effects")}).second) continue;
       SceneDesc s;
@@ -276,28 +303,9 @@ class OitExperiment final : public Experiment {
         throw UsageError(e.what());
       }
       try {
-        auto effects = select_effects(s, c.get("effects"));
-        shadowing = shadowing || std::find(effects.begin(), effects.end(), "self-shadowing") != effects.end();
+        select_effects(s, c.get("effects"));
       } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
-      }
-    }
-    if (!shadowing) check_shadow_params_unused(cases);
-  }
-  // Without self-shadowing in any case, a shadow parameter other than its defaults was set for nothing:
-  // its cases would run the same image (docs/usage.md: a parameter no selected case uses is a usage error).
-  void check_shadow_params_unused(const std::vector<ParamSet>& cases) const {
-    for (const auto& spec : params()) {
-      if (spec.name.rfind("shadow_", 0) != 0) continue;
-      for (const auto& c : cases) {
-        if (!c.has(spec.name)) continue;
-        const auto& v = c.get(spec.name);
-        bool is_default = std::find(spec.defaults.begin(), spec.defaults.end(), v) != spec.defaults.end() ||
-                          std::find(spec.quick.begin(), spec.quick.end(), v) != spec.quick.end();
-        if (!is_default)
-          throw UsageError(spec.name + "=" + v + ": only cases whose effects hold self-shadowing read " + spec.name +
-                           ", and no selected case does (scene " + c.get("scene") +
-                           "); choose a scene that declares it (e.g. scene=hairball-lit) or drop the --set");
       }
     }
   }

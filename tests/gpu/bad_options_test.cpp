@@ -66,6 +66,11 @@ TEST(BadOptions, EveryLineOfTheTableExitsWithItsCodeNamingTheOption) {
   const std::string out = (dir / "x.csv").string();
   const std::string nullmodel = scene_with_model(dir, "nullmodel", "/dev/null");
   const std::string dirmodel = scene_with_model(dir, "dirmodel", dir.string());
+  // Presets whose hardware set is wrong: the error names the set's line, not the entry's.
+  const std::string hwname = (dir / "hwname.json").string(), hwvalue = (dir / "hwvalue.json").string();
+  std::ofstream(hwname) << "{\"runs\": [{\"experiment\": \"occupancy\",\n  \"hardware\": {\"set\": {\"sise\": [4]}}}]}";
+  std::ofstream(hwvalue)
+      << "{\"runs\": [{\"experiment\": \"occupancy\",\n  \"hardware\": {\"set\": {\"size\": [-3]}}}]}";
   auto lines = read_table(fs::path(OITBENCH_TEST_DATA) / "bad_options.tsv");
   ASSERT_GE(lines.size(), 50u);
   for (const auto& l : lines) {
@@ -75,6 +80,8 @@ TEST(BadOptions, EveryLineOfTheTableExitsWithItsCodeNamingTheOption) {
         s = replace_all(s, "{out}", out);
         s = replace_all(s, "{nullmodel}", nullmodel);
         s = replace_all(s, "{dirmodel}", dirmodel);
+        s = replace_all(s, "{hwname}", hwname);
+        s = replace_all(s, "{hwvalue}", hwvalue);
         return replace_all(s, "{bad}", bad);
       };
       std::vector<std::string> args;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include "core/presets.hpp"
 #include "core/runner.hpp"
 #include "experiments/experiments.hpp"
@@ -245,6 +247,39 @@ TEST(ParamGrid, ScopedParametersDoNotMultiplyTheCasesTheyDoNotApplyTo) {
   EXPECT_FALSE(cases[1].uses("max_frags"));
 }
 
+// shadow_slices on a grid that mixes scenes with and without self-shadowing: the scenes without it run
+// once (the parameter is unused there), not once per value as identical cases.
+TEST(ParamGrid, ShadowParametersDoNotMultiplyScenesWithoutSelfShadowing) {
+  Registry registry;
+  register_all_experiments(registry);
+  const Experiment* oit = registry.find("oit");
+  ASSERT_NE(oit, nullptr);
+  auto count = [&](const std::vector<std::string>& slices) {
+    std::map<std::string, std::vector<std::string>> o = {
+        {"technique", {"BASE-IS"}}, {"scene", {"hairball-lit", "planes"}}, {"view", {"fwd"}}};
+    if (!slices.empty()) o["shadow_slices"] = slices;
+    std::map<std::string, size_t> n;
+    for (const auto& c : expand_grid(registry.params_of(*oit), o, false)) {
+      ++n[c.get("scene")];
+      EXPECT_EQ(c.uses("shadow_slices"), c.get("scene") == "hairball-lit") << c.describe();
+    }
+    return n;
+  };
+  auto one = count({}), two = count({"8", "16"});
+  EXPECT_GT(one["planes"], 0u);
+  EXPECT_EQ(two["planes"], one["planes"]);
+  EXPECT_EQ(two["hairball-lit"], 2 * one["hairball-lit"]);
+  // Where no selected case holds self-shadowing, the list is a usage error naming the condition.
+  try {
+    check_requests(registry, {{"oit", {{"scene", {"planes"}}, {"shadow_slices", {"8", "16"}}}, {}, {}, {}}});
+    ADD_FAILURE() << "shadow_slices on planes alone was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("applies only where the case's scene and effects hold self-shadowing"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ParamGrid, AGridBeyondTheBoundIsRefusedBeforeItIsBuilt) {
   std::vector<ParamSpec> specs;
   std::vector<std::string> values;
@@ -320,9 +355,18 @@ TEST(Presets, AHardwareSetReplacesItsListsOnHardwareOnlyAndIsCheckedEverywhere) 
     ADD_FAILURE() << "a hardware set naming no parameter was accepted";
   } catch (const UsageError& e) {
     EXPECT_NE(std::string(e.what()).find("no parameter 'sise' (in its hardware set)"), std::string::npos) << e.what();
+    // The hardware set's own place, not the entry's (runs[0]).
+    EXPECT_TRUE(std::regex_search(e.what(), std::regex(R"(^t\.json:2:\d+: runs\[0\]\.hardware\.set: experiment)")))
+        << e.what();
   }
   bad.hardware->set = {{"size", {"-3"}}};
-  EXPECT_THROW(check_requests(registry, {bad}), UsageError);
+  try {
+    check_requests(registry, {bad});
+    ADD_FAILURE() << "a hardware set with a bad value was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_TRUE(std::regex_search(e.what(), std::regex(R"(^t\.json:2:\d+: runs\[0\]\.hardware\.set: .*'-3')")))
+        << e.what();
+  }
   EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "hardware": {"set": {"size": []}}}]})"),
             "t.json:1:60: runs[0].hardware.set.size: empty value list");
   EXPECT_EQ(preset_error(R"({"runs": [{"experiment": "occupancy", "hardware": {"set": 3}}]})"),
