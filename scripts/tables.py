@@ -2,6 +2,7 @@
 """Our measurements beside the papers' published numbers.
 
     scripts/tables.py RUN.csv [RUN2.csv ...] [--paper DIR] [--format markdown|csv] [--table NAME]
+    scripts/tables.py --error-memory RUN.csv [...] [--format markdown|csv]
 
 DIR holds the tidy paper tables (source,table,gpu,resolution,scene,view,technique,size,metric,unit,value);
 by default the repository's results/published (its README.md names each file's source), found from this
@@ -20,6 +21,7 @@ import signal
 import sys
 
 from oitbench import cli
+from oitbench import error_memory
 from oitbench import results as oitres
 from oitbench.papers import (
     CSV_COLUMNS, Ours, TABLES, TECHNIQUES, build_rows, default_paper_dir, load_paper, paired_markdown,
@@ -36,6 +38,9 @@ def main(argv=None):
     ap.add_argument("--list", action="store_true", help="list the tables and the technique mapping")
     ap.add_argument("--paired", action="store_true",
                     help="print the runner's paired speedups (rows with a baseline) instead of the paper tables")
+    ap.add_argument("--error-memory", action="store_true",
+                    help="print each oit case's rmse beside its bytes per pixel, per scene and view, instead of the "
+                         "paper tables (no paper numbers needed)")
     args = ap.parse_args(argv)
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `tables.py | head` ends quietly
     if args.list:
@@ -54,6 +59,19 @@ def main(argv=None):
             print(f"tables.py: {e}", file=sys.stderr)
             return 2
         print(paired_markdown([r for run in runs for r in run.rows]))
+        return 0
+    if args.error_memory:
+        try:
+            rows = error_memory.rows_of([oitres.Run.load(p) for p in args.csv])
+        except oitres.ResultsError as e:
+            print(f"tables.py: {e}", file=sys.stderr)
+            return 2
+        if args.format == "csv":
+            w = csv.DictWriter(sys.stdout, fieldnames=error_memory.COLUMNS, lineterminator="\n")
+            w.writeheader()
+            w.writerows(rows)
+        else:
+            print(error_memory.markdown(rows), end="")
         return 0
     try:
         tables = select_tables(args.table)

@@ -126,7 +126,7 @@ class OitExperiment final : public Experiment {
            "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
            "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, "
            "micro/oit/approx/approx_case.cpp; MBOIT, Muenstermann 2018; STOCHASTIC, Enderton 2010, "
-           "micro/oit/moments/moments.hpp) "
+           "micro/oit/moments/moments.hpp; WOIT, Aizenshtein 2022, micro/oit/wavelets/wavelets.hpp) "
            "is validated against each technique's own CPU model, its error vs the exact image reported as data. "
            "Depth peeling (Everitt 2001 DP, Bavoil & Myers 2008 DDP, micro/oit/peel/peel_case.cpp) is exact when it "
            "peels every layer, validated against a CPU model of the layers it peeled when max_layers stops it";

@@ -222,6 +222,41 @@ class TablesMboit(TempDirTest):
         self.assertIn("| DP | 123 ms | 0.13x | \u2014 | \u2014 |", out)
 
 
+class TablesErrorMemory(TempDirTest):
+    """--error-memory: each oit case's rmse beside its bytes per pixel, sized by the parameters its technique
+    reads, sorted by memory within a scene; a missing file is exit 2 naming it."""
+
+    def run_csv(self):
+        rows = []
+        for technique, extra, nbytes, rmse in (("MBOIT", {"moments": 8, "moment_kind": "power", "moment_bits": 32},
+                                                52, 0.02),
+                                               ("WOIT", {"wavelet_coeffs": 8, "wavelet_bits": 32}, 48, 0.007),
+                                               ("MBOIT", {"moments": 4, "moment_kind": "power", "moment_bits": 32},
+                                                36, 0.04)):
+            for p, ms in (("blend", 1.0), ("total", 3.0)):
+                rows.append(dict({"experiment": "oit", "variant": "", "technique": technique, "scene": "planes",
+                                  "view": "fwd", "pass": p, "median_ms": ms, "rmse": rmse,
+                                  "bytes_per_pixel": nbytes}, **extra))
+        return syn.write_summary(self.path("em.csv"), rows, metrics=["rmse", "bytes_per_pixel"],
+                                 params=["scene", "view", "technique", "moments", "moment_kind", "moment_bits",
+                                         "wavelet_coeffs", "wavelet_bits"])
+
+    def test_rows_sorted_by_memory_with_their_sizes(self):
+        out = run_script("tables.py", "--error-memory", self.run_csv(), "--format", "csv").stdout
+        rows = list(csv.DictReader(io.StringIO(out)))
+        self.assertEqual([r["bytes_per_pixel"] for r in rows], ["36", "48", "52"])  # one row per case
+        self.assertEqual(rows[1]["technique"], "WOIT")
+        self.assertEqual(rows[1]["size"], "wavelet_bits=32 wavelet_coeffs=8")
+        self.assertEqual(rows[0]["size"], "moment_bits=32 moment_kind=power moments=4")
+        md = run_script("tables.py", "--error-memory", self.run_csv()).stdout
+        self.assertIn("| planes | fwd | 64x64 | WOIT | wavelet_bits=32 wavelet_coeffs=8 | 48 | 0.007 |", md)
+
+    def test_a_missing_file_is_exit_2_naming_it(self):
+        proc = run_script("tables.py", "--error-memory", self.path("nosuch.csv"), check=False)
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn("nosuch.csv", proc.stderr)
+
+
 class TablesFromReferenceRuns(unittest.TestCase):
     """The approximate-OIT and line-primitive tables on the committed llvmpipe runs."""
 
