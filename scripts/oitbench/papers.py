@@ -1,7 +1,6 @@
 """The papers' tables beside ours: the library behind scripts/tables.py (and report.py, findings.py).
 Knowles 2014's speedups and table-1 figures are computed in knowles.py."""
 import glob
-import json
 import os
 import re
 import statistics
@@ -97,13 +96,7 @@ def table(name):
 def load_tables(path=TABLES_PATH):
     """The papers' tables and technique names of results/published/tables.json: (TABLES, TECHNIQUES).
     ResultsError names the file and what is wrong with it."""
-    try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
-    except OSError as e:
-        raise oitres.ResultsError(f"{path}: cannot read ({e.strerror or e})") from e
-    except (UnicodeDecodeError, json.JSONDecodeError) as e:
-        raise oitres.ResultsError(f"{path}:{getattr(e, 'lineno', 1)}: not JSON ({getattr(e, 'msg', e)})") from e
+    data = oitres.read_json(path, "the papers' tables")
     try:
         tables = [PaperTable(**t) for t in data["tables"]]
         techniques = {name: Technique(t["experiment"], t["any"], t.get("exclude", ()), t.get("size"))

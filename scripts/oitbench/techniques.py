@@ -1,10 +1,9 @@
 """The oit experiment's techniques, read from scripts/techniques.json (the binary's export of its technique
 table, `oitbench list --techniques --json`; tests/scripts/test_technique_table.py checks the two agree).
 Scripts ask here for names and families instead of typing technique names."""
-import json
 import os
 
-from oitbench.results import ResultsError
+from oitbench.results import ResultsError, read_json
 
 TECHNIQUES_PATH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "techniques.json")
 # Knowles 2014's tables list the exact techniques scheme by scheme in this order (its CUDA-* are our CS-*;
@@ -15,15 +14,7 @@ PAPER_SCHEME_ORDER = ("BASE", "G", "CS", "BMA", "CPU")
 def load(path=TECHNIQUES_PATH):
     """The technique table: a list of {name, family, scheme, sort, captures, params, ...}. ResultsError
     names the file for one that is not the export."""
-    try:
-        with open(path, encoding="utf-8") as f:
-            table = json.load(f)
-    except OSError as e:
-        raise ResultsError(f"{path}: cannot read ({e.strerror or e})") from e
-    except UnicodeDecodeError as e:
-        raise ResultsError(f"{path}: not a text file ({e.reason})") from e
-    except json.JSONDecodeError as e:
-        raise ResultsError(f"{path}:{e.lineno}: not JSON ({e.msg})") from e
+    table = read_json(path, "the technique table")
     if not isinstance(table, dict) or not isinstance(table.get("techniques"), list):
         raise ResultsError(f"{path}: not oitbench's technique table (`oitbench list --techniques --json`)")
     return table["techniques"]

@@ -263,38 +263,10 @@ class ExactCase final : public OitCase {
     size_t truncated = 0;
     for (unsigned d : stats.depth) truncated += d > max_frags_;
     record_storage_metrics(m, stats, truncated);
-    std::vector<std::string> problems;
-    if (!host.error.empty()) problems.push_back(host.error);
-    if (!stats.error.empty()) problems.push_back(stats.error);
-    if (stats.total_fragments != lists_->fragments())
-      problems.push_back("the lists hold " + std::to_string(stats.total_fragments) + " fragments but " +
-                         std::to_string(lists_->fragments()) + " were captured (fragments lost)");
-    if (bma_) {
-      size_t wrong = 0;
-      for (size_t p = 0; p < stats.depth.size(); ++p) wrong += host.counts[p] != stats.depth[p];
-      if (wrong) problems.push_back(std::to_string(wrong) + " pixel(s) whose BMA count differs from their list length");
-    }
     m["tied_pixels"] = std::to_string(stats.tied_pixels);
-    if (truncated && !native_)
-      problems.push_back(std::to_string(truncated) + " pixel(s) deeper than MAX_FRAGS=" + std::to_string(max_frags_) +
-                         " were truncated");
-    // With the opaque effect the reference does not trust the capture's depth test: every
-    // transparent fragment captured again without it, hidden on the CPU by the opaque depth.
+    std::vector<std::string> problems = list_problems(host, stats, truncated);
     HostLists reference_lists;
-    if (passes_.opaque()) {
-      if (size_t behind = hidden_fragments(host, backdrop))
-        problems.push_back(std::to_string(behind) +
-                           " captured fragment(s) lie at or behind the opaque depth (the capture's depth test failed)");
-      size_t hidden = 0;
-      const auto referencing = ctx_.phase(Phase::Reference);
-      reference_lists = visible_fragments(capture_unoccluded(), backdrop, hidden);
-      m["hidden_fragments"] = std::to_string(hidden);
-      ListStats ref_stats = list_stats(reference_lists);
-      if (ref_stats.total_fragments != stats.total_fragments)
-        problems.push_back("the capture kept " + std::to_string(stats.total_fragments) +
-                           " fragments, the CPU's depth test of an unoccluded capture keeps " +
-                           std::to_string(ref_stats.total_fragments));
-    }
+    if (passes_.opaque()) reference_lists = opaque_reference(host, stats, backdrop, m, problems);
     const HostLists& ref_host = passes_.opaque() ? reference_lists : host;
     std::vector<double> ref;
     {
@@ -322,8 +294,52 @@ class ExactCase final : public OitCase {
     // caught even though the reference above, built from the same captured fragments, agrees.
     // (Only where transparency is the one effect: the geometry knows no opaque pass or shading.)
     check_against_planes(rgba, stats, m, problems);
-    // llvmpipe ends a shader invocation's loops after 65535 iterations in total (gallivm's
-    // LP_MAX_TGSI_LOOP_ITERATIONS): deep reverse insertion sorts and wide k-way merges pass it.
+    explain_loop_limit(stats, problems);
+    merge_shadow_check(m, problems, passes_.validate_shadow());
+    conclude(v, problems);
+    return v;
+  }
+  // What the lists must be whatever the image shows: every captured fragment kept, BMA's counts equal
+  // to the list lengths, no pixel deeper than MAX_FRAGS (the CPU resolve has no MAX_FRAGS).
+  std::vector<std::string> list_problems(const HostLists& host, const ListStats& stats, size_t truncated) {
+    std::vector<std::string> problems;
+    if (!host.error.empty()) problems.push_back(host.error);
+    if (!stats.error.empty()) problems.push_back(stats.error);
+    if (stats.total_fragments != lists_->fragments())
+      problems.push_back("the lists hold " + std::to_string(stats.total_fragments) + " fragments but " +
+                         std::to_string(lists_->fragments()) + " were captured (fragments lost)");
+    if (bma_) {
+      size_t wrong = 0;
+      for (size_t p = 0; p < stats.depth.size(); ++p) wrong += host.counts[p] != stats.depth[p];
+      if (wrong) problems.push_back(std::to_string(wrong) + " pixel(s) whose BMA count differs from their list length");
+    }
+    if (truncated && !native_)
+      problems.push_back(std::to_string(truncated) + " pixel(s) deeper than MAX_FRAGS=" + std::to_string(max_frags_) +
+                         " were truncated");
+    return problems;
+  }
+  // With the opaque effect the reference does not trust the capture's depth test: every
+  // transparent fragment captured again without it, hidden on the CPU by the opaque depth.
+  HostLists opaque_reference(const HostLists& host, const ListStats& stats, const Backdrop& backdrop,
+                             std::map<std::string, std::string>& m, std::vector<std::string>& problems) {
+    if (size_t behind = hidden_fragments(host, backdrop))
+      problems.push_back(std::to_string(behind) +
+                         " captured fragment(s) lie at or behind the opaque depth (the capture's depth test failed)");
+    size_t hidden = 0;
+    const auto referencing = ctx_.phase(Phase::Reference);
+    HostLists reference_lists = visible_fragments(capture_unoccluded(), backdrop, hidden);
+    m["hidden_fragments"] = std::to_string(hidden);
+    ListStats ref_stats = list_stats(reference_lists);
+    if (ref_stats.total_fragments != stats.total_fragments)
+      problems.push_back("the capture kept " + std::to_string(stats.total_fragments) +
+                         " fragments, the CPU's depth test of an unoccluded capture keeps " +
+                         std::to_string(ref_stats.total_fragments));
+    return reference_lists;
+  }
+  // llvmpipe ends a shader invocation's loops after 65535 iterations in total (gallivm's
+  // LP_MAX_TGSI_LOOP_ITERATIONS): deep reverse insertion sorts and wide k-way merges pass it. Where a
+  // case failed there, the likely cause joins its problems.
+  void explain_loop_limit(const ListStats& stats, std::vector<std::string>& problems) {
     double loop_steps = std::max(0.5 * stats.peak_depth * stats.peak_depth,
                                  static_cast<double>(stats.peak_depth) * max_frags_ / std::max(1, block_));
     if (!problems.empty() && !native_ && ctx_.gl().is_software_renderer() && loop_steps > 65535)
@@ -331,9 +347,6 @@ class ExactCase final : public OitCase {
           "likely cause: llvmpipe stops a shader invocation's loops after 65535 iterations in total "
           "(gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and this resolve may need ~" +
           fmt(loop_steps) + " per pixel");
-    merge_shadow_check(m, problems, passes_.validate_shadow());
-    conclude(v, problems);
-    return v;
   }
   // What the capture held: sizes, storage, BMA's intervals and BMA-AUTO's choice.
   void record_storage_metrics(std::map<std::string, std::string>& m, const ListStats& stats, size_t truncated) {
