@@ -117,6 +117,36 @@ ExactParams exact_params() {
   return {block, pool, max_frags, cs_group, auto_cache, frag_colour, frag_depth, block_sort, order_check};
 }
 
+// The self-shadowing effect's parameters (micro/oit/scene/shadow_map.hpp): read only where the scene declares it.
+std::pair<ParamSpec, ParamSpec> shadow_params() {
+  ParamSpec shadow_slices{"shadow_slices",
+                          "self-shadowing: depth slices of the opacity shadow map (scenes whose effects hold "
+                          "self-shadowing; others run no shadow pass)",
+                          {"64"},
+                          {},
+                          {},
+                          ParamSpec::Kind::Integer,
+                          2,
+                          1024};
+  ParamSpec shadow_resolution{"shadow_resolution",
+                              "self-shadowing: the opacity shadow map's width and height in texels",
+                              {"256"},
+                              {"128"},
+                              {},
+                              ParamSpec::Kind::Integer,
+                              8,
+                              4096};
+  // Read only where the case's scene and effects hold self-shadowing: elsewhere unused (empty in the
+  // rows), so a list of them does not multiply those cases in a grid that mixes scenes, and a list
+  // where no case holds it is a usage error (expand_grid).
+  const auto shadowing = holds_self_shadowing();
+  for (ParamSpec* s : {&shadow_slices, &shadow_resolution}) {
+    s->applies_if = shadowing;
+    s->applies_if_text = "the case's scene and effects hold self-shadowing";
+  }
+  return {shadow_slices, shadow_resolution};
+}
+
 class OitExperiment final : public Experiment {
  public:
   std::string name() const override { return "oit"; }
@@ -161,32 +191,7 @@ class OitExperiment final : public Experiment {
                       {"PPLL"},
                       {},
                       capture_storage_names()};
-    // The self-shadowing effect (micro/oit/scene/shadow_map.hpp): read only where the scene declares it.
-    ParamSpec shadow_slices{"shadow_slices",
-                            "self-shadowing: depth slices of the opacity shadow map (scenes whose effects hold "
-                            "self-shadowing; others run no shadow pass)",
-                            {"64"},
-                            {},
-                            {},
-                            ParamSpec::Kind::Integer,
-                            2,
-                            1024};
-    ParamSpec shadow_resolution{"shadow_resolution",
-                                "self-shadowing: the opacity shadow map's width and height in texels",
-                                {"256"},
-                                {"128"},
-                                {},
-                                ParamSpec::Kind::Integer,
-                                8,
-                                4096};
-    // Read only where the case's scene and effects hold self-shadowing: elsewhere unused (empty in the
-    // rows), so a list of them does not multiply those cases in a grid that mixes scenes, and a list
-    // where no case holds it is a usage error (expand_grid).
-    const auto shadowing = holds_self_shadowing();
-    for (ParamSpec* s : {&shadow_slices, &shadow_resolution}) {
-      s->applies_if = shadowing;
-      s->applies_if_text = "the case's scene and effects hold self-shadowing";
-    }
+    const auto [shadow_slices, shadow_resolution] = shadow_params();
     ExactParams x = exact_params();
     std::vector<ParamSpec> ps = {scene,
                                  view,
