@@ -22,6 +22,7 @@
 #include "oit/resolve/resolve_sort.hpp"
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
+#include "oit/slab/slab.hpp"
 #include "oit/techniques.hpp"
 #include "oit/wavelets/wavelets.hpp"
 
@@ -214,6 +215,7 @@ class OitExperiment final : public Experiment {
     for (auto& a : peel_params()) ps.push_back(std::move(a));
     for (auto& a : moment_params()) ps.push_back(std::move(a));
     for (auto& a : wavelet_params()) ps.push_back(std::move(a));
+    for (auto& a : slab_params()) ps.push_back(std::move(a));
     // Each technique parameter is scoped to the techniques that read it (the technique table says
     // which), so a row carries only its own.
     for (auto& spec : ps)

@@ -9,6 +9,7 @@
 #include "oit/moments/moments.hpp"
 #include "oit/peel/peel.hpp"
 #include "oit/scene/scene.hpp"
+#include "oit/slab/slab.hpp"
 #include "oit/wavelets/wavelets.hpp"
 
 namespace oitbench::oit {
@@ -98,6 +99,7 @@ std::vector<Technique> build_table() {
       other("WOIT", F::Moments, 1, kFlicker + Params{"wavelet_coeffs", "wavelet_basis", "wavelet_bits"},
             make_woit_case),
       other("STOCHASTIC", F::Stochastic, 0, kFlicker + Params{"samples_per_pixel"}, make_stochastic_case),
+      other("SLAB", F::Stochastic, 1, kFlicker + Params{"samples_per_pixel", "slab_layers"}, make_slab_case),
       approx("unsorted", A::Unsorted, kFlicker),
   };
 }

@@ -604,7 +604,9 @@ def oit_label(row):
         t += f"/{row['wavelet_coeffs']}"
         if row.get("wavelet_bits") == "16":
             t += "/16"
-    if techniques.reads(name, "samples_per_pixel") and row.get("samples_per_pixel"):
+    if techniques.reads(name, "slab_layers") and row.get("slab_layers"):  # /4x8: 4 layers of 8-sample masks
+        t += f"/{row['slab_layers']}x{row.get('samples_per_pixel') or '?'}"
+    elif techniques.reads(name, "samples_per_pixel") and row.get("samples_per_pixel"):
         t += f"/{row['samples_per_pixel']}"
     # Fragment formats other than the papers' (rgba8, window depth) are part of the case's name.
     for col, default in (("frag_colour", "rgba8"), ("frag_depth", "window")):

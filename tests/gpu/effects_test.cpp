@@ -20,6 +20,7 @@ const std::map<std::string, std::vector<std::string>> kTechniquePasses = {
     {"CS-IMS", {"capture", "resolve"}},   {"CPU-NATIVE", {"capture", "readback", "resolve"}},
     {"MLAB", {"insert", "resolve"}},      {"AT", {"insert", "blend", "resolve"}},
     {"WBOIT", {"accumulate", "resolve"}}, {"unsorted", {"blend"}},
+    {"SLAB", {"slab", "resolve"}},
 };
 
 // The subsets of a scene's effects a user can ask for (each non-empty subset).
@@ -143,7 +144,7 @@ class Effects : public GlTest {};
 
 TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
   for (const char* technique : {"BASE-IS", "BMA-IS", "CS-IS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted", "HT",
-                                "DP", "DDP", "MBOIT", "WOIT", "STOCHASTIC"}) {
+                                "DP", "DDP", "MBOIT", "WOIT", "STOCHASTIC", "SLAB"}) {
     std::map<std::string, std::string> p = {
         {"scene", "house-opaque"}, {"view", "V1"}, {"technique", technique}, {"detail", "full"}};
     p["effects"] = "transparency";
@@ -163,7 +164,7 @@ TEST_F(Effects, OpaqueOccludersCullHiddenFragmentsAndStayValid) {
 
 TEST_F(Effects, DroppingTheOpaqueDepthTestFailsEveryTechnique) {
   for (const char* technique : {"BASE-IS", "BMA-RBS-L", "CS-IMS", "CPU-NATIVE", "MLAB", "AT", "WBOIT", "unsorted", "HT",
-                                "DP", "DDP", "MBOIT", "WOIT", "STOCHASTIC"}) {
+                                "DP", "DDP", "MBOIT", "WOIT", "STOCHASTIC", "SLAB"}) {
     std::map<std::string, std::string> p = {{"scene", "house-opaque"},
                                             {"view", "V1"},
                                             {"technique", technique},

@@ -2,6 +2,7 @@
 #include "oit/moments/captured_view.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "oit/case_support.hpp"
@@ -9,6 +10,7 @@
 #include "oit/reference/image_io.hpp"
 #include "oit/reference/visible_capture.hpp"
 #include "oit/scene/coverage_estimate.hpp"
+#include "shaders/stochastic/bindings.h"
 
 namespace oitbench::oit {
 
@@ -41,6 +43,51 @@ CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
   v.fragments = std::move(seen.host);
   v.hidden = seen.hidden;
   return v;
+}
+
+bool record_coverage(const CapturedView& view, GLuint framebuffer, int width, int height, const gl::Program& program,
+                     std::vector<CoverageFragment>& out) {
+  const GLuint words = STOCHASTIC_CAPTURE_WORDS;
+  GLuint capacity = static_cast<GLuint>(view.fragments.nodes.size() * 2 + 1024);
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    gl::Buffer buffer = gl::make_buffer();
+    size_t bytes = sizeof(GLuint) * (1 + static_cast<size_t>(capacity) * words);
+    glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glClearNamedBufferData(buffer.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, width, height);
+    glEnable(GL_MULTISAMPLE);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glProgramUniform1ui(program.get(), glGetUniformLocation(program.get(), "capacity"), capacity);
+    glProgramUniform1i(program.get(), glGetUniformLocation(program.get(), "width"), width);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STOCHASTIC_CAPTURE_BINDING, buffer.get());
+    view.fx->bind_geometry(program.get());
+    glUseProgram(program.get());
+    view.mesh->draw();
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint count = 0;
+    glGetNamedBufferSubData(buffer.get(), 0, sizeof(GLuint), &count);
+    if (count > capacity) {
+      capacity = count;
+      continue;
+    }
+    std::vector<GLuint> data(static_cast<size_t>(count) * words);
+    if (count) glGetNamedBufferSubData(buffer.get(), sizeof(GLuint), sizeof(GLuint) * data.size(), data.data());
+    out.clear();
+    for (size_t i = 0; i < count; ++i) {
+      const GLuint* w = &data[i * words];
+      // The opaque effect: the CPU hides what lies behind the opaque depth (the record keeps all).
+      if (view.backdrop.hides(w[0], std::bit_cast<float>(w[4]))) continue;
+      // gl_FragDepth is clamped to the depth range: the centre depth of a fragment whose centre lies
+      // outside its primitive is extrapolated and can leave [0, 1].
+      out.push_back({w[0], w[1], w[2], w[3], std::clamp(std::bit_cast<float>(w[4]), 0.0f, 1.0f)});
+    }
+    return true;
+  }
+  return false;
 }
 
 CapturedViewCase::CapturedViewCase(const ParamSet& p, CaseContext& ctx)

@@ -29,6 +29,14 @@ struct CapturedView {
 };
 CapturedView capture_view(const ParamSet& p, CaseContext& ctx);
 
+// Every fragment of the view as shaders/stochastic/coverage.frag records it (pixel, primitive, sample
+// coverage, colour, depth), drawn with `program` into `framebuffer` (MSAA for STOCHASTIC, single-sample
+// for SLAB), outside the timed passes: the CPU models draw the same hashed masks from it. Per pixel,
+// the record keeps the order the fragments reached the pixel; those behind the opaque depth are left
+// out (the shaders hide them). False when the record lost fragments (its buffer overflowed twice).
+bool record_coverage(const CapturedView& view, GLuint framebuffer, int width, int height, const gl::Program& program,
+                     std::vector<CoverageFragment>& out);
+
 // The part MBOIT's and STOCHASTIC's cases share (captured_view.cpp): the view captured once, the
 // result target and its read-backs, the frames the flicker metric compares, and the validation
 // against the reference and the technique's CPU model up to the technique's own checks.

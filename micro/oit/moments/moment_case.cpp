@@ -36,10 +36,11 @@ std::vector<ParamSpec> moment_params() {
        {},
        {"32", "16"}},
       {"samples_per_pixel",
-       "STOCHASTIC: coverage samples per pixel (MSAA samples times passes where the driver has fewer)",
+       "STOCHASTIC, SLAB: coverage samples per pixel (STOCHASTIC: MSAA samples times passes where the driver "
+       "has fewer; SLAB: the bits of each layer's mask)",
        {"8"},
        {},
-       {"4", "8", "16"}},
+       {"4", "8", "16", "32"}},
   };
   return ps;
 }

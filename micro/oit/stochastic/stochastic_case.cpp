@@ -2,7 +2,6 @@
 // samples_per_pixel coverage samples, validated against stochastic_model (moment_model.hpp), which
 // draws the same masks from the same hash for the fragments' recorded MSAA coverage.
 #include <algorithm>
-#include <bit>
 
 #include "oit/case_support.hpp"
 #include "oit/moments/captured_view.hpp"
@@ -29,11 +28,13 @@ class StochasticCase final : public CapturedViewCase {
       : CapturedViewCase(p, ctx), run_seed_(ctx.seed()), total_(ctx.width(), ctx.height(), GL_R32F) {
     const int samples = static_cast<int>(p.get_int("samples_per_pixel"));
     // The most MSAA samples the driver renders RGBA32F and 32-bit float depth with that divide the
-    // count; the rest comes from further passes (Enderton et al.: more passes, more samples).
+    // count, at most 16 (hash.glsl's masks shift within one uint); the rest comes from further passes
+    // (Enderton et al.: more passes, more samples).
     auto colour = sample_counts(GL_RGBA32F), depth = sample_counts(GL_DEPTH_COMPONENT32F);
     int best = 0;
     for (GLint c : colour)
-      if (c >= 2 && c <= samples && samples % c == 0 && std::find(depth.begin(), depth.end(), c) != depth.end())
+      if (c >= 2 && c <= std::min(samples, 16) && samples % c == 0 &&
+          std::find(depth.begin(), depth.end(), c) != depth.end())
         best = std::max(best, static_cast<int>(c));
     if (best == 0)
       throw Unsupported(
@@ -153,49 +154,9 @@ class StochasticCase final : public CapturedViewCase {
   }
 
  private:
-  // Every fragment's MSAA coverage, once: counted, then recorded into a buffer of that size.
+  // Every fragment's MSAA coverage, once (captured_view.hpp).
   void record_coverage() {
-    const GLuint words = STOCHASTIC_CAPTURE_WORDS;
-    GLuint capacity = static_cast<GLuint>(view_.fragments.nodes.size() * 2 + 1024);
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      gl::Buffer buffer = gl::make_buffer();
-      size_t bytes = sizeof(GLuint) * (1 + static_cast<size_t>(capacity) * words);
-      glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
-      glClearNamedBufferData(buffer.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-      glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
-      glViewport(0, 0, width_, height_);
-      glEnable(GL_MULTISAMPLE);
-      glDisable(GL_DEPTH_TEST);
-      glDisable(GL_BLEND);
-      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-      glProgramUniform1ui(coverage_.get(), glGetUniformLocation(coverage_.get(), "capacity"), capacity);
-      glProgramUniform1i(coverage_.get(), glGetUniformLocation(coverage_.get(), "width"), width_);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STOCHASTIC_CAPTURE_BINDING, buffer.get());
-      view_.fx->bind_geometry(coverage_.get());
-      glUseProgram(coverage_.get());
-      view_.mesh->draw();
-      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      GLuint count = 0;
-      glGetNamedBufferSubData(buffer.get(), 0, sizeof(GLuint), &count);
-      if (count > capacity) {
-        capacity = count;
-        continue;
-      }
-      std::vector<GLuint> data(static_cast<size_t>(count) * words);
-      if (count) glGetNamedBufferSubData(buffer.get(), sizeof(GLuint), sizeof(GLuint) * data.size(), data.data());
-      coverage_fragments_.clear();
-      for (size_t i = 0; i < count; ++i) {
-        const GLuint* w = &data[i * words];
-        // The opaque effect: the CPU hides what lies behind the opaque depth (the record keeps all).
-        if (view_.backdrop.hides(w[0], std::bit_cast<float>(w[4]))) continue;
-        // gl_FragDepth is clamped to the depth range: the centre depth of a fragment whose centre lies
-        // outside its primitive is extrapolated and can leave [0, 1].
-        coverage_fragments_.push_back({w[0], w[1], w[2], w[3], std::clamp(std::bit_cast<float>(w[4]), 0.0f, 1.0f)});
-      }
-      return;
-    }
-    coverage_lost_ = true;
+    coverage_lost_ = !oit::record_coverage(view_, msaa_.get(), width_, height_, coverage_, coverage_fragments_);
   }
 
   uint32_t run_seed_;
