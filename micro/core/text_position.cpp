@@ -26,6 +26,14 @@ struct JsonCursor {
     ++i;
     return s;
   }
+  // After a member's or an element's value: past it and its comma; false at the container's end.
+  bool next() {
+    value();
+    space();
+    if (!at(',')) return false;
+    ++i;
+    return true;
+  }
   void value() {
     space();
     if (at('"')) {
@@ -64,36 +72,27 @@ size_t json_path_offset(const std::string& text, const std::vector<std::string>&
     bool found = false;
     if (c.at('{')) {
       ++c.i;
-      for (c.space(); c.at('"'); c.space()) {
+      for (c.space(); c.at('"') && !found; c.space()) {
         const size_t key_at = c.i;
-        const bool match = c.string() == key;
+        found = c.string() == key;
         c.space();
         ++c.i;  // ':'
-        if (match) {
+        if (found)
           best = key_at;
-          found = true;
+        else if (!c.next())
           break;
-        }
-        c.value();
-        c.space();
-        if (!c.at(',')) break;
-        ++c.i;
       }
     } else if (c.at('[') && !key.empty() && std::all_of(key.begin(), key.end(), ::isdigit)) {
       const size_t index = std::stoul(key);
       ++c.i;
-      for (size_t n = 0;; ++n) {
+      for (size_t n = 0; !found; ++n) {
         c.space();
         if (c.i >= text.size() || c.at(']')) break;
-        if (n == index) {
+        found = n == index;
+        if (found)
           best = c.i;
-          found = true;
+        else if (!c.next())
           break;
-        }
-        c.value();
-        c.space();
-        if (!c.at(',')) break;
-        ++c.i;
       }
     }
     if (!found) break;

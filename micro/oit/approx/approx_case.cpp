@@ -242,10 +242,7 @@ class ApproxCase final : public OitCase {
         storage_->bind();
         glBindImageTexture(APPROX_LOCK_IMAGE_UNIT, locks_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, APPROX_STATS_BINDING, stats_.get());
-        glUseProgram(insert_.get());
-        passes_.begin_geometry();
-        passes_.transparent().draw();
-        passes_.end_geometry();
+        draw_transparent(insert_);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         StorageResources::barrier();
       }
@@ -260,19 +257,10 @@ class ApproxCase final : public OitCase {
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE);
-        glUseProgram(blend_.get());
-        passes_.begin_geometry();
-        passes_.transparent().draw();
-        passes_.end_geometry();
+        draw_transparent(blend_);
         glDisable(GL_BLEND);
       }
-      auto t = timer.pass("resolve");
-      out_.bind();
-      glBindTextureUnit(APPROX_ACCUM_UNIT, accum_.color_texture());
-      passes_.bind_backdrop(resolve_.get());
-      if (ht_) glBindTextureUnit(APPROX_REVEAL_UNIT, reveal_.get());
-      glUseProgram(resolve_.get());
-      quad_.draw();
+      resolve(timer, ht_);
     } else if (settings_.technique == T::Wboit) {
       {
         auto t = timer.pass("accumulate");
@@ -285,29 +273,17 @@ class ApproxCase final : public OitCase {
         glEnable(GL_BLEND);
         glBlendFunci(0, GL_ONE, GL_ONE);
         glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
-        glUseProgram(blend_.get());
-        passes_.begin_geometry();
-        passes_.transparent().draw();
-        passes_.end_geometry();
+        draw_transparent(blend_);
         glDisable(GL_BLEND);
       }
-      auto t = timer.pass("resolve");
-      out_.bind();
-      glBindTextureUnit(APPROX_ACCUM_UNIT, accum_.color_texture());
-      glBindTextureUnit(APPROX_REVEAL_UNIT, reveal_.get());
-      passes_.bind_backdrop(resolve_.get());
-      glUseProgram(resolve_.get());
-      quad_.draw();
+      resolve(timer, true);
     } else {
       auto t = timer.pass("blend");
       out_.bind();
       passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
       glEnable(GL_BLEND);
       glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-      glUseProgram(blend_.get());
-      passes_.begin_geometry();
-      passes_.transparent().draw();
-      passes_.end_geometry();
+      draw_transparent(blend_);
       glDisable(GL_BLEND);
     }
     // Outside the timed passes: the frames the flicker metric compares.
@@ -315,6 +291,24 @@ class ApproxCase final : public OitCase {
       frames_.push_back(rgb_of(out_.read_rgba32f()));
       if (static_cast<int>(frames_.size()) > flicker_runs_) frames_.erase(frames_.begin());
     }
+  }
+
+  // The transparent geometry through `program`, between the effects' geometry set-up and tear-down.
+  void draw_transparent(const gl::Program& program) {
+    glUseProgram(program.get());
+    passes_.begin_geometry();
+    passes_.transparent().draw();
+    passes_.end_geometry();
+  }
+  // The full-screen resolve of the accumulated colour (and the revealage, where `reveal`) over the backdrop.
+  void resolve(PassTimer& timer, bool reveal) {
+    auto t = timer.pass("resolve");
+    out_.bind();
+    glBindTextureUnit(APPROX_ACCUM_UNIT, accum_.color_texture());
+    if (reveal) glBindTextureUnit(APPROX_REVEAL_UNIT, reveal_.get());
+    passes_.bind_backdrop(resolve_.get());
+    glUseProgram(resolve_.get());
+    quad_.draw();
   }
 
   Validation validate() override {

@@ -131,6 +131,20 @@ int least_rect_area(const std::vector<int>& seq, int n, const std::vector<float>
   return r;
 }
 
+// The unbounded AT variants' last step (slot n is the new fragment (a, z), t its node's relative
+// transmittance, d its depth): node `remove` merges into node `compress`, and the new fragment takes
+// the freed slot unless it was the one removed.
+void merge_into(std::vector<Node>& s, int n, int compress, int remove, const std::vector<float>& t,
+                const std::vector<float>& d, float a, float z) {
+  float tc = t[compress] * t[remove];
+  if (compress == n) {
+    s[remove] = at_node(tc, d[n]);
+  } else {
+    s[compress] = at_node(tc, d[compress]);
+    if (remove != n) s[remove] = at_node(a, z);
+  }
+}
+
 void insert_uat(std::vector<Node>& s, int n, float a, float z) {
   std::vector<float> t(n + 1), d(n + 1);
   t[n] = a;
@@ -154,13 +168,7 @@ void insert_uat(std::vector<Node>& s, int n, float a, float z) {
     }
   int r = least_rect_area(order, n, t, d);
   int remove = order[r], compress = order[r - 1];
-  float tc = t[compress] * t[remove];
-  if (compress == n) {
-    s[remove] = at_node(tc, d[n]);
-  } else {
-    s[compress] = at_node(tc, d[compress]);
-    if (remove != n) s[remove] = at_node(a, z);
-  }
+  merge_into(s, n, compress, remove, t, d, a, z);
 }
 
 void insert_uhat(std::vector<Node>& s, int n, float a, float z, bool unguarded) {
@@ -192,13 +200,7 @@ void insert_uhat(std::vector<Node>& s, int n, float a, float z, bool unguarded) 
   int compress = min_index;
   for (int i = 0; i <= n; ++i)
     if (i != remove && d[i] <= d[remove] && d[i] > d[compress]) compress = i;
-  float tc = t[compress] * t[remove];
-  if (compress == n) {
-    s[remove] = at_node(tc, d[n]);
-  } else {
-    s[compress] = at_node(tc, d[compress]);
-    if (remove != n) s[remove] = at_node(a, z);
-  }
+  merge_into(s, n, compress, remove, t, d, a, z);
 }
 
 // LAAT (section 6.2): s holds n node slots and the head slot (index n).
