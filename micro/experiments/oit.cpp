@@ -174,14 +174,8 @@ class OitExperiment final : public Experiment {
                    {"fwd", "rev"},
                    {},
                    {}};
-    ParamSpec technique{
-        "technique",
-        "resolve: BASE-* one program with MAX_FRAGS; BMA-* one per depth interval under "
-        "a stencil mask; CS-* a compute pass; RBS-G blocks sorted in place in global memory; "
-        "IS insertion, IMS insertion+merge, RBS-L register block sort; BMA-AUTO the "
-        "per-interval sort calibrated on this driver (cached); MLAB..unsorted, HT: approximate; DP, DDP: depth "
-        "peeling",
-        techniques_where(&Technique::in_default), techniques_where(&Technique::in_quick), technique_names()};
+    ParamSpec technique{"technique", techniques_description(), techniques_where(&Technique::in_default),
+                        techniques_where(&Technique::in_quick), technique_names()};
     ParamSpec detail{
         "detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"}, {"full", "small"}};
     ParamSpec capture{"capture",

@@ -227,6 +227,67 @@ std::string reference_label(TechniqueReference reference) {
   return "?";
 }
 
+namespace {
+
+std::string scheme_text(ResolveScheme scheme) {
+  switch (scheme) {
+    case S::Base:
+      return "one program with MAX_FRAGS";
+    case S::Bma:
+      return "one per depth interval under a stencil mask";
+    case S::Compute:
+      return "a compute pass";
+    case S::Global:
+      return "blocks sorted in place in global memory";
+    case S::Cpu:
+      return "sorted and blended on the CPU";
+    case S::None:
+      break;
+  }
+  return "";
+}
+
+std::string sort_text(const std::string& sort) {
+  if (sort == "IS") return "insertion";
+  if (sort == "IMS") return "insertion+merge";
+  if (sort == "RBS-L") return "register block sort";
+  if (sort == "AUTO") return "the per-interval sort calibrated on this driver (cached)";
+  return "";  // a scheme's only sort (NATIVE, RBS): the scheme says it
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+std::string techniques_description() {
+  std::vector<ResolveScheme> schemes;
+  std::vector<std::string> sorts;
+  for (const auto& t : techniques()) {
+    if (t.family != F::Exact) continue;
+    if (std::find(schemes.begin(), schemes.end(), t.scheme) == schemes.end()) schemes.push_back(t.scheme);
+    if (!sort_text(t.sort).empty() && std::find(sorts.begin(), sorts.end(), t.sort) == sorts.end())
+      sorts.push_back(t.sort);
+  }
+  std::string out = "resolve: ";
+  for (ResolveScheme s : schemes) {
+    std::vector<std::string> names;
+    for (const auto& t : techniques())
+      if (t.family == F::Exact && t.scheme == s) names.push_back(t.name);
+    out += (names.size() == 1 ? names[0] : scheme_label(s) + "-*") + " " + scheme_text(s) + "; ";
+  }
+  std::vector<std::string> sort_parts;
+  for (const auto& sort : sorts) sort_parts.push_back(sort + " " + sort_text(sort));
+  out += "sorts: " + joined(sort_parts);
+  for (F family : {F::Peel, F::Approximate, F::Moments, F::Stochastic})
+    if (auto names = technique_names(family); !names.empty())
+      out += "; " + joined(names) + ": " + (family == F::Peel ? "depth peeling" : family_label(family));
+  return out;
+}
+
 std::string techniques_json() {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const auto& t : techniques()) {

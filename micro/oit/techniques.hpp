@@ -63,6 +63,9 @@ std::unique_ptr<OitCase> make_oit_case(const ParamSet& p, CaseContext& ctx);
 std::string family_label(TechniqueFamily family);  // exact, peel, approximate, moments, stochastic
 std::string scheme_label(ResolveScheme scheme);    // BASE, BMA, CS, G, CPU, or empty
 std::string reference_label(TechniqueReference reference);
+// What the `technique` parameter's description says, from the table: the exact resolves by scheme and
+// sort, then each other family's techniques by name.
+std::string techniques_description();
 // The table as the JSON that `oitbench list --techniques --json` prints (scripts/techniques.json).
 std::string techniques_json();
 

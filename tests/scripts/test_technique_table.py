@@ -4,6 +4,7 @@ which the scripts read. These tests fail when the two differ, when the table nam
 experiment does not have, or when a parameter's scope in the result schema disagrees with the table."""
 import json
 import os
+import re
 import subprocess
 import unittest
 
@@ -68,6 +69,16 @@ class TechniqueTableTest(unittest.TestCase):
         for p, names in readers.items():
             self.assertIn(p, params, f"{p}: not a parameter of any experiment")
             self.assertEqual(params[p].get("applies_where", {}).get("oit"), "technique in {" + ", ".join(names) + "}", p)
+
+    def test_the_technique_parameter_is_described_from_the_table(self):
+        # `oitbench list` describes the technique parameter from the table: every technique outside the
+        # exact family is named there by name, so a new one shows up without an edit.
+        out = run_oitbench("list")
+        self.assertEqual(out.returncode, 0, out.stderr)
+        line = next(l for l in out.stdout.splitlines() if l.strip().startswith("technique  resolve:"))
+        for t in self.printed()["techniques"]:
+            if t["family"] != "exact":
+                self.assertRegex(line, r"(; |, )" + re.escape(t["name"]) + r"(, |: )", t["name"])
 
     def test_json_only_with_techniques(self):
         out = subprocess.run([oitbench_exe(), "list", "--json"], capture_output=True, text=True, timeout=60)
