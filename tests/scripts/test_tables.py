@@ -257,6 +257,21 @@ class TablesErrorMemory(TempDirTest):
         self.assertIn("nosuch.csv", proc.stderr)
 
 
+class TablesSlabDoc(unittest.TestCase):
+    """docs/experiments/oit.md's SLAB-beside-STOCHASTIC table is --error-memory of the committed run."""
+
+    def test_the_docs_table_is_generated_from_the_committed_csv(self):
+        measured = os.path.join(REPO, "results", "techniques", "slab-stochastic-llvmpipe.csv")
+        table = run_script("tables.py", "--error-memory", measured).stdout
+        with open(os.path.join(REPO, "docs", "experiments", "oit.md"), encoding="utf-8") as f:
+            doc = f.read()
+        marker = "<!-- generated: scripts/tables.py --error-memory results/techniques/slab-stochastic-llvmpipe.csv -->"
+        begin = doc.index(marker) + len(marker) + 1
+        end = doc.index("<!-- end of SLAB table -->")
+        self.assertEqual(doc[begin:end], table, "docs/experiments/oit.md's SLAB table is stale; regenerate it with\n"
+                         "  scripts/tables.py --error-memory results/techniques/slab-stochastic-llvmpipe.csv")
+
+
 class TablesFromReferenceRuns(unittest.TestCase):
     """The approximate-OIT and line-primitive tables on the committed llvmpipe runs."""
 
