@@ -1,6 +1,7 @@
 #include "oit/techniques.hpp"
 
 #include <algorithm>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -230,21 +231,13 @@ std::string reference_label(TechniqueReference reference) {
 namespace {
 
 std::string scheme_text(ResolveScheme scheme) {
-  switch (scheme) {
-    case S::Base:
-      return "one program with MAX_FRAGS";
-    case S::Bma:
-      return "one per depth interval under a stencil mask";
-    case S::Compute:
-      return "a compute pass";
-    case S::Global:
-      return "blocks sorted in place in global memory";
-    case S::Cpu:
-      return "sorted and blended on the CPU";
-    case S::None:
-      break;
-  }
-  return "";
+  static const std::map<ResolveScheme, std::string> text = {{S::Base, "one program with MAX_FRAGS"},
+                                                            {S::Bma, "one per depth interval under a stencil mask"},
+                                                            {S::Compute, "a compute pass"},
+                                                            {S::Global, "blocks sorted in place in global memory"},
+                                                            {S::Cpu, "sorted and blended on the CPU"}};
+  const auto it = text.find(scheme);
+  return it == text.end() ? "" : it->second;
 }
 
 std::string sort_text(const std::string& sort) {
