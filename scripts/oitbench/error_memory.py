@@ -6,7 +6,7 @@ from oitbench import results as oitres
 from oitbench import techniques
 
 # Parameters a technique reads that do not size it (they are the same for every case of a comparison).
-NOT_SIZES = {"flicker_runs", "guard", "storage", "sync", "wavelet_basis"}
+NOT_SIZES = {"flicker_runs", "guard", "storage", "sync"}
 COLUMNS = ("scene", "view", "resolution", "technique", "size", "bytes_per_pixel", "rmse", "max_abs_error",
            "model_max_diff", "status")
 

@@ -27,6 +27,6 @@ void main() {
     w[4 * t + 2] = v.z;
     w[4 * t + 3] = v.w;
   }
-  float t = exp(-haar_absorbance(w, wavelet_warp(gl_FragCoord.z, nearFar, depthRange)));
+  float t = exp(-basis_absorbance(w, wavelet_warp(gl_FragCoord.z, nearFar, depthRange)));
   weighted = vec4(c.rgb * c.a * t, c.a * t);
 }

@@ -1,4 +1,4 @@
-// WOIT pass 1: every fragment adds its absorbance -ln(1 - alpha) times each Haar function at its
+// WOIT pass 1: every fragment adds its absorbance -ln(1 - alpha) times each basis function at its
 // warped depth (additive blending into WAVELET_TARGETS layers of RGBA, 32- or 16-bit float).
 #include "../common/oitbench.glsl"
 #include "../approx/nodes.glsl"
@@ -31,7 +31,7 @@ void main() {
   vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
   float a = c.a >= 1.0 ? ABSORBANCE_MAX : min(-log(1.0 - c.a), ABSORBANCE_MAX);
   float w[WAVELET_COEFFS];
-  haar_contribution(wavelet_warp(gl_FragCoord.z, nearFar, depthRange), a, w);
+  basis_contribution(wavelet_warp(gl_FragCoord.z, nearFar, depthRange), a, w);
   coeffs0 = COEFFS_AT(0) + vec4(oitbench_fault_hang(zero));
   coeffs1 = COEFFS_AT(1);
 #if WAVELET_TARGETS > 2

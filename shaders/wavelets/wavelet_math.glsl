@@ -8,6 +8,9 @@
 // functions at x. The absorbance in front of x integrates the reconstructed density, so each
 // coefficient is weighted by its function's integral up to x: x for the scaling function, a tent
 // over its cell for a wavelet. Only one wavelet per level is non-zero at any x.
+//   WAVELET_COSINE  the cosine basis instead (not a wavelet; a smooth comparison): 1 and
+//                   sqrt(2) cos(pi k x), integrals x and sqrt(2) sin(pi k x) / (pi k); the truncated
+//                   series rings, so the absorbance is clamped to [0, c0]
 #ifndef WAVELETS_WAVELET_MATH_GLSL
 #define WAVELETS_WAVELET_MATH_GLSL
 
@@ -25,7 +28,21 @@ float wavelet_warp(float window_depth, vec2 near_far, vec2 range) {
   return clamp((log(view) - log(range.x)) / (log(range.y) - log(range.x)), 0.0, 0.99999994);
 }
 
-void haar_contribution(float x, float absorbance, out float w[WAVELET_COEFFS]) {
+#ifdef WAVELET_COSINE
+const float WAVELET_PI = 3.14159265358979;
+void basis_contribution(float x, float absorbance, out float w[WAVELET_COEFFS]) {
+  w[0] = absorbance;
+  for (int k = 1; k < WAVELET_COEFFS; ++k) w[k] = absorbance * sqrt(2.0) * cos(WAVELET_PI * float(k) * x);
+}
+
+float basis_absorbance(float w[WAVELET_COEFFS], float x) {
+  float a = w[0] * x;
+  for (int k = 1; k < WAVELET_COEFFS; ++k)
+    a += w[k] * sqrt(2.0) * sin(WAVELET_PI * float(k) * x) / (WAVELET_PI * float(k));
+  return clamp(a, 0.0, max(w[0], 0.0));
+}
+#else
+void basis_contribution(float x, float absorbance, out float w[WAVELET_COEFFS]) {
   w[0] = absorbance;
   for (int level = 0; (1 << level) < WAVELET_COEFFS; ++level) {
     float cells = float(1 << level), lo = floor(x * cells) / cells, width = 1.0 / cells;
@@ -35,7 +52,7 @@ void haar_contribution(float x, float absorbance, out float w[WAVELET_COEFFS]) {
   }
 }
 
-float haar_absorbance(float w[WAVELET_COEFFS], float x) {
+float basis_absorbance(float w[WAVELET_COEFFS], float x) {
   float a = w[0] * x;
   for (int level = 0; (1 << level) < WAVELET_COEFFS; ++level) {
     float cells = float(1 << level), lo = floor(x * cells) / cells, width = 1.0 / cells;
@@ -45,5 +62,6 @@ float haar_absorbance(float w[WAVELET_COEFFS], float x) {
   }
   return max(a, 0.0);
 }
+#endif
 
 #endif

@@ -10,9 +10,9 @@ class Wavelets : public GlTest {};
 
 namespace {
 std::map<std::string, std::string> woit(const std::string& scene, const std::string& coeffs,
-                                        const std::string& bits = "32") {
-  return {{"scene", scene},           {"view", "fwd"},        {"technique", "WOIT"}, {"detail", "small"},
-          {"wavelet_coeffs", coeffs}, {"wavelet_bits", bits}, {"flicker_runs", "2"}};
+                                        const std::string& bits = "32", const std::string& basis = "haar") {
+  return {{"scene", scene},           {"view", "fwd"},        {"technique", "WOIT"},    {"detail", "small"},
+          {"wavelet_coeffs", coeffs}, {"wavelet_bits", bits}, {"wavelet_basis", basis}, {"flicker_runs", "2"}};
 }
 double metric(const Validation& v, const std::string& name) { return std::stod(v.metrics.at(name)); }
 }  // namespace
@@ -40,16 +40,17 @@ TEST(WaveletMath, HaarAbsorbanceIsTheStepFunctionSmoothedOverOneCell) {
 }
 
 TEST_F(Wavelets, EveryVariantMatchesItsModel) {
-  for (const char* scene : {"planes", "hairball"})
-    for (const char* bits : {"32", "16"})
-      for (const char* n : {"8", "16", "32"}) {
-        auto v = run_case("oit", woit(scene, n, bits), {40, 24});
-        EXPECT_TRUE(v.valid) << scene << " " << n << " " << bits << ": " << v.reason;
-        EXPECT_EQ(v.metrics.at("nonfinite"), "0");
-        EXPECT_GT(metric(v, "rmse"), 0.0) << "an approximation";
-        EXPECT_EQ(v.metrics.at("flicker_pixels"), "0") << "WOIT is order-independent and deterministic";
-        EXPECT_EQ(std::stoi(v.metrics.at("bytes_per_pixel")), std::stoi(n) * std::stoi(bits) / 8 + 16);
-      }
+  for (const char* basis : {"haar", "cosine"})
+    for (const char* scene : {"planes", "hairball"})
+      for (const char* bits : {"32", "16"})
+        for (const char* n : {"8", "16", "32"}) {
+          auto v = run_case("oit", woit(scene, n, bits, basis), {40, 24});
+          EXPECT_TRUE(v.valid) << basis << " " << scene << " " << n << " " << bits << ": " << v.reason;
+          EXPECT_EQ(v.metrics.at("nonfinite"), "0");
+          EXPECT_GT(metric(v, "rmse"), 0.0) << "an approximation";
+          EXPECT_EQ(v.metrics.at("flicker_pixels"), "0") << "WOIT is order-independent and deterministic";
+          EXPECT_EQ(std::stoi(v.metrics.at("bytes_per_pixel")), std::stoi(n) * std::stoi(bits) / 8 + 16);
+        }
 }
 
 TEST_F(Wavelets, ErrorFallsFromEightToThirtyTwoCoefficients) {
@@ -72,11 +73,29 @@ TEST_F(Wavelets, FiniteAndValidOnTheNumericallyHardScenes) {
 }
 
 TEST_F(Wavelets, TheValidatorFailsOnAWrongResult) {
-  auto p = woit("hairball", "16");
-  p["fault"] = "wrong-result";
-  auto v = run_case("oit", p, {32, 32});
-  EXPECT_FALSE(v.valid);
-  EXPECT_NE(v.reason.find("CPU model"), std::string::npos) << v.reason;
+  for (const char* basis : {"haar", "cosine"}) {
+    auto p = woit("hairball", "16", "32", basis);
+    p["fault"] = "wrong-result";
+    auto v = run_case("oit", p, {32, 32});
+    EXPECT_FALSE(v.valid) << basis;
+    EXPECT_NE(v.reason.find("CPU model"), std::string::npos) << v.reason;
+  }
+}
+
+TEST(WaveletMath, CosineAbsorbanceApproachesTheStepAndStaysInItsRange) {
+  using oit::cosine_absorbance;
+  using oit::cosine_contribution;
+  std::vector<double> c(32);
+  cosine_contribution(0.5, 0.9, 32, c.data());
+  EXPECT_NEAR(cosine_absorbance(c.data(), 32, 0.0), 0.0, 1e-12);
+  EXPECT_NEAR(cosine_absorbance(c.data(), 32, 0.999999), 0.9, 1e-3);
+  EXPECT_NEAR(cosine_absorbance(c.data(), 32, 0.5), 0.45, 1e-6);  // half the step at the pulse (symmetry)
+  EXPECT_LT(cosine_absorbance(c.data(), 32, 0.3), 0.05);
+  EXPECT_GT(cosine_absorbance(c.data(), 32, 0.7), 0.85);
+  for (double x = 0; x < 1; x += 0.01) {
+    EXPECT_GE(cosine_absorbance(c.data(), 32, x), 0.0);
+    EXPECT_LE(cosine_absorbance(c.data(), 32, x), 0.9);
+  }
 }
 
 TEST_F(Wavelets, UndefinedValuesAreUsageErrorsListingTheValidOnes) {
@@ -84,7 +103,7 @@ TEST_F(Wavelets, UndefinedValuesAreUsageErrorsListingTheValidOnes) {
     std::string set, valid;
   };
   for (const Bad& b : {Bad{"wavelet_coeffs=12", "8|16|32"}, Bad{"wavelet_bits=24", "32|16"},
-                       Bad{"wavelet_basis=daubechies", "haar"}}) {
+                       Bad{"wavelet_basis=daubechies", "haar|cosine"}}) {
     auto r = run_oitbench({"run", "oit", "--quick", "--set", "technique=WOIT", "--set", b.set, "--out", "-"});
     EXPECT_EQ(r.exit_code, 2) << b.set << ": " << r.err;
     EXPECT_NE(r.err.find(b.valid), std::string::npos) << b.set << ": " << r.err;

@@ -11,7 +11,8 @@ namespace {
 
 // The Haar reconstruction is well conditioned (a sum of at most log2(N) + 1 terms, no solve): the GPU
 // and the model part only where float and double put a fragment's warped depth on different sides of
-// a cell boundary, or by the float sums' and exp's rounding. The tolerance is per channel.
+// a cell boundary, or by the float sums' and exp's rounding; the cosine series only by rounding. The
+// tolerance is per channel.
 constexpr double kWaveletTolerance = 2.0 / 255.0;
 
 }  // namespace
@@ -24,7 +25,12 @@ std::vector<ParamSpec> wavelet_params() {
        {"16"},
        {},
        {"8", "16", "32"}},
-      {"wavelet_basis", "WOIT: the wavelet basis the absorbance is projected onto", {"haar"}, {}, {"haar"}},
+      {"wavelet_basis",
+       "WOIT: the basis the absorbance is projected onto: haar (the paper's wavelets) or cosine (a smooth "
+       "comparison, not a wavelet: sqrt(2) cos(pi k x), the community code's Fourier basis in half-range form)",
+       {"haar"},
+       {},
+       {"haar", "cosine"}},
       {"wavelet_bits",
        "WOIT: storage of the coefficients, RGBA32F or RGBA16F layers (4 coefficients each)",
        {"32"},
@@ -39,6 +45,7 @@ class WoitCase final : public CapturedViewCase {
  public:
   WoitCase(const ParamSet& p, CaseContext& ctx)
       : CapturedViewCase(p, ctx), accum_(ctx.width(), ctx.height(), GL_RGBA32F) {
+    s_.basis = p.get("wavelet_basis") == "cosine" ? WaveletBasis::Cosine : WaveletBasis::Haar;
     s_.coeffs = static_cast<int>(p.get_int("wavelet_coeffs"));
     s_.bits = static_cast<int>(p.get_int("wavelet_bits"));
     s_.near_far = view_.near_far;
@@ -47,6 +54,7 @@ class WoitCase final : public CapturedViewCase {
     Defines d = view_.fx->geometry_defines();
     for (auto& x : view_.fx->depth_sampler_defines()) d.push_back(x);
     d.push_back({"WAVELET_COEFFS", std::to_string(s_.coeffs)});
+    if (s_.basis == WaveletBasis::Cosine) d.push_back({"WAVELET_COSINE", ""});
     coeff_pass_ =
         ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "wavelets/coefficients.frag"}}, d);
     blend_pass_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "wavelets/blend.frag"}}, d);

@@ -14,6 +14,8 @@ namespace {
 constexpr double kAbsorbanceMax = 10.0;  // wavelet_math.glsl's ABSORBANCE_MAX, as MBOIT's
 constexpr double kLastBelowOne = 0.99999994;
 constexpr int kMaxCoeffs = 32;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kSqrt2 = 1.41421356237309504880;
 
 double absorbance_of(double alpha) {
   return alpha >= 1.0 ? kAbsorbanceMax : std::min(-std::log(1.0 - alpha), kAbsorbanceMax);
@@ -58,6 +60,17 @@ double haar_absorbance(const double* coeffs, int n, double x) {
   return std::max(a, 0.0);
 }
 
+void cosine_contribution(double x, double absorbance, int n, double* out) {
+  out[0] = absorbance;
+  for (int k = 1; k < n; ++k) out[k] = absorbance * kSqrt2 * std::cos(kPi * k * x);
+}
+
+double cosine_absorbance(const double* coeffs, int n, double x) {
+  double a = coeffs[0] * x;
+  for (int k = 1; k < n; ++k) a += coeffs[k] * kSqrt2 * std::sin(kPi * k * x) / (kPi * k);
+  return std::clamp(a, 0.0, std::max(coeffs[0], 0.0));
+}
+
 std::vector<double> woit_model(const HostLists& l, const Backdrop& bg, const WoitSettings& s) {
   const size_t pixels = l.heads.size();
   const int n = std::min(s.coeffs, kMaxCoeffs);
@@ -74,15 +87,20 @@ std::vector<double> woit_model(const HostLists& l, const Backdrop& bg, const Woi
       // Pass 1: the coefficients as the blender sums them into the targets.
       sums.fill(0.0f);
       for (const auto& fr : frags) {
-        haar_contribution(wavelet_warp(fr.depth, s.near_far, s.depth_range), absorbance_of(fr.colour.a), n,
-                          contribution.data());
+        const double x = wavelet_warp(fr.depth, s.near_far, s.depth_range), a = absorbance_of(fr.colour.a);
+        if (s.basis == WaveletBasis::Cosine)
+          cosine_contribution(x, a, n, contribution.data());
+        else
+          haar_contribution(x, a, n, contribution.data());
         for (int i = 0; i < n; ++i) sums[i] = store(sums[i] + static_cast<float>(contribution[i]));
       }
       for (int i = 0; i < n; ++i) coeffs[i] = sums[i];
       // Pass 2: each fragment weighted by the transmittance in front of its depth.
       glm::dvec4 acc(0.0);
       for (const auto& fr : frags) {
-        double t = std::exp(-haar_absorbance(coeffs.data(), n, wavelet_warp(fr.depth, s.near_far, s.depth_range)));
+        const double x = wavelet_warp(fr.depth, s.near_far, s.depth_range);
+        double t = std::exp(-(s.basis == WaveletBasis::Cosine ? cosine_absorbance(coeffs.data(), n, x)
+                                                              : haar_absorbance(coeffs.data(), n, x)));
         acc += glm::dvec4(glm::dvec3(fr.colour) * static_cast<double>(fr.colour.a) * t, fr.colour.a * t);
       }
       // Resolve: the zeroth coefficient is the total absorbance.

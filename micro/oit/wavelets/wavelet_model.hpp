@@ -20,6 +20,10 @@ void haar_contribution(double x, double absorbance, int n, double* out);
 // The absorbance in front of warped depth x: the integral over [0, x] of the density the n
 // coefficients reconstruct (never below 0).
 double haar_absorbance(const double* coeffs, int n, double x);
+// The cosine basis's counterparts: sqrt(2) cos(pi k x) per coefficient, and the absorbance in front of
+// x (its integral, clamped to [0, coefficient 0]: the truncated series rings).
+void cosine_contribution(double x, double absorbance, int n, double* out);
+double cosine_absorbance(const double* coeffs, int n, double x);
 // RGB per pixel (3 doubles), background where no fragment landed.
 std::vector<double> woit_model(const HostLists& lists, const Backdrop& background, const WoitSettings& s);
 

@@ -20,7 +20,12 @@ namespace oitbench::oit {
 // wavelet psi_{j,k} with j = floor(log2 i), k = i - 2^j, orthonormal (2^(j/2) and -2^(j/2) on the
 // halves of [k 2^-j, (k + 1) 2^-j)). N coefficients span the functions constant on N equal depth
 // cells, so the reconstructed absorbance rises linearly across the cell of each fragment.
+// Cosine (a smooth comparison basis, not a wavelet: the community code's Fourier basis in its
+// half-range form): coefficient 0 is 1, coefficient k >= 1 is sqrt(2) cos(pi k x), orthonormal on [0, 1).
+enum class WaveletBasis { Haar, Cosine };
+
 struct WoitSettings {
+  WaveletBasis basis = WaveletBasis::Haar;
   int coeffs = 16;                    // 8, 16, 32
   int bits = 32;                      // storage of the coefficients: 32 (RGBA32F) or 16 (RGBA16F)
   glm::vec2 near_far{0.1f, 10.f};     // the projection's planes (window depth back to view depth)
