@@ -604,6 +604,8 @@ def oit_label(row):
         t += f"/{row['wavelet_coeffs']}"
         if row.get("wavelet_bits") == "16":
             t += "/16"
+        if row.get("wavelet_basis") not in (None, "", "haar"):  # /cosine: the smooth comparison basis
+            t += f"/{row['wavelet_basis']}"
     if techniques.reads(name, "slab_layers") and row.get("slab_layers"):  # /4x8: 4 layers of 8-sample masks
         t += f"/{row['slab_layers']}x{row.get('samples_per_pixel') or '?'}"
     elif techniques.reads(name, "samples_per_pixel") and row.get("samples_per_pixel"):
