@@ -8,6 +8,7 @@
 // line whose pattern matches a case decides what it is expected to end in; a case no line matches is
 // expected ok.
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -46,6 +47,10 @@ Verdict judge(const std::vector<Expectation>& baseline, const Outcome& outcome);
 // 'PATTERN' matches no case of this run", for a warning.
 std::vector<std::string> unmatched_patterns(const std::vector<Expectation>& baseline,
                                             const std::vector<std::string>& keys);
+// The same over keys that are walked, not held: `walk` calls its argument with each key and stops when it
+// returns false (once every pattern matched one).
+using KeyWalk = std::function<void(const std::function<bool(const std::string&)>&)>;
+std::vector<std::string> unmatched_patterns(const std::vector<Expectation>& baseline, const KeyWalk& walk);
 
 // The baseline this run would expect: every case that did not end ok with its status (its reason as a
 // comment), then the `flaky` lines of `kept` (a baseline's, which one run cannot tell) as they were.

@@ -54,12 +54,11 @@ std::string write_expect_path(const RunOptions& o) {
 }
 
 int report_outcomes(const RunOptions& o, const std::vector<Expectation>& baseline, const std::vector<Outcome>& outcomes,
-                    const std::vector<std::string>& grid_keys, const Row& run, int code) {
+                    const std::vector<std::string>& unmatched, const Row& run, int code) {
   std::vector<Verdict> verdicts;
   size_t unexpected = 0, expected_failures = 0;
   if (!o.expect.empty()) {
-    for (const auto& w : unmatched_patterns(baseline, grid_keys))
-      std::fprintf(stderr, "oitbench: warning: --expect %s\n", w.c_str());
+    for (const auto& w : unmatched) std::fprintf(stderr, "oitbench: warning: --expect %s\n", w.c_str());
     for (const auto& out : outcomes) {
       verdicts.push_back(judge(baseline, out));
       if (!verdicts.back().expected) {

@@ -19,9 +19,10 @@ std::string write_expect_path(const RunOptions& options);
 
 // Writes the reports and prints the verdict; returns the exit code: `code` (the run's) without --expect,
 // else 130 if interrupted, kExitUnexpected when an outcome was unexpected, 0 when all were expected.
-// `run`: the run's columns (driver, gl_renderer, git_sha, ...) for the JUnit properties.
+// `unmatched`: unmatched_patterns' warnings. `run`: the run's columns (driver, gl_renderer, git_sha, ...) for the JUnit
+// properties.
 int report_outcomes(const RunOptions& options, const std::vector<Expectation>& baseline,
-                    const std::vector<Outcome>& outcomes, const std::vector<std::string>& grid_keys, const Row& run,
+                    const std::vector<Outcome>& outcomes, const std::vector<std::string>& unmatched, const Row& run,
                     int code);
 
 }  // namespace oitbench

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
 #include <sstream>
+
+#include "core/grid.hpp"
 
 namespace oitbench {
 
@@ -189,58 +190,9 @@ std::map<std::string, std::vector<std::string>> parse_set_options(const std::vec
 std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
                                   const std::map<std::string, std::vector<std::string>>& overrides, bool quick,
                                   size_t max_cases) {
-  auto values_of = [&](const ParamSpec& spec) -> const std::vector<std::string>& {
-    auto it = overrides.find(spec.name);
-    return it != overrides.end() ? it->second : (quick && !spec.quick.empty()) ? spec.quick : spec.defaults;
-  };
-  // Bound the work before building it: the product of the value counts (scoping only shrinks it).
-  double product = 1;
-  for (const auto& spec : specs) product *= static_cast<double>(std::max<size_t>(values_of(spec).size(), 1));
-  if (product > static_cast<double>(max_cases))
-    throw UsageError("the parameter grid has " + fmt_num(product) + " cases, more than " + std::to_string(max_cases) +
-                     "; narrow a --set list, or raise --max-cases");
-  std::vector<ParamSet> out{ParamSet{}};
-  for (const auto& spec : specs) {
-    const auto& values = values_of(spec);
-    std::vector<ParamSet> next;
-    next.reserve(out.size() * values.size());
-    for (const auto& base : out)
-      for (const auto& v : values) {
-        auto c = base;
-        c.set(spec.name, v);
-        next.push_back(std::move(c));
-      }
-    out = std::move(next);
-  }
-  // Scoping, in spec order: a condition reads parameters declared before or after the scoped one.
-  std::vector<ParamSet> cases;
-  std::set<std::vector<std::pair<std::string, std::string>>> seen;
-  std::set<std::string> applied;
-  for (auto& c : out) {
-    for (const auto& spec : specs) {
-      if (spec.applies(c)) {
-        applied.insert(spec.name);
-      } else {
-        if (!spec.defaults.empty()) c.set(spec.name, spec.defaults.front());
-        c.mark_unused(spec.name);
-      }
-    }
-    if (seen.insert(c.used_values()).second) cases.push_back(c);
-  }
-  for (const auto& spec : specs)
-    if (overrides.count(spec.name) && !applied.count(spec.name)) {
-      std::string selected;
-      for (const auto& cond : spec.applies_when) {
-        std::set<std::string> vals;
-        for (const auto& c : out) vals.insert(c.get(cond.param));
-        std::string list;
-        for (const auto& v : vals) list += (list.empty() ? "" : ",") + v;
-        selected += (selected.empty() ? "" : ", ") + cond.param + "=" + list;
-      }
-      throw UsageError("parameter '" + spec.name + "' applies only where " + spec.scope_text() +
-                       "; no selected case has that" + (selected.empty() ? "" : " (" + selected + ")"));
-    }
-  return cases;
+  const CaseGrid grid(specs, overrides, quick, max_cases);
+  grid.check_overrides_apply();
+  return grid.cases();
 }
 
 }  // namespace oitbench

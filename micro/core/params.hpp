@@ -40,6 +40,9 @@ struct ParamSpec {
   // case it does not hold for runs the first default, and such cases are kept once.
   std::function<bool(const ParamSet&)> applies_if = {};
   std::string applies_if_text = {};
+  // The parameters applies_if reads: a grid asks it once per combination of their values (empty: it
+  // may read any, and is asked for every case).
+  std::vector<std::string> applies_if_reads = {};
 
   ParamSpec& only_when(std::string param, std::vector<std::string> values) {
     applies_when.push_back({std::move(param), std::move(values)});
@@ -97,7 +100,7 @@ std::map<std::string, std::vector<std::string>> parse_set_options(const std::vec
 // A parameter that does not apply to a case (ParamSpec::applies_when) is set to its first default
 // and marked unused, and cases that then agree on every used parameter are kept once. Throws
 // UsageError when an override applies to no case, or when the grid exceeds `max_cases` (checked before
-// it is built).
+// it is built). Every case in memory: a run walks its grid instead (core/grid.hpp).
 inline constexpr size_t kMaxGridCases = 100000;
 std::vector<ParamSet> expand_grid(const std::vector<ParamSpec>& specs,
                                   const std::map<std::string, std::vector<std::string>>& overrides, bool quick,

@@ -138,7 +138,10 @@ class Experiment {
   virtual std::unique_ptr<CaseInstance> prepare(const ParamSet& params, CaseContext& ctx) = 0;
   // Before anything runs: throws UsageError for a case the parameter grid allows but the
   // experiment's data rules out (an effect its scene does not declare).
+  // It is given one case per distinct combination of the values of checked_params() (holding only
+  // those), so a grid of millions of cases is checked without being built; not called where that is empty.
   virtual void check_cases(const std::vector<ParamSet>& cases) const { (void)cases; }
+  virtual std::vector<std::string> checked_params() const { return {}; }
 };
 
 class Registry {

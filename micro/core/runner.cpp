@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <sstream>
 
@@ -100,8 +101,13 @@ std::vector<PassSample> per_repetition(const std::vector<PassSample>& all, int r
 
 class Runner {
  public:
-  Runner(Registry& registry, const RunOptions& options)
-      : registry_(registry), opt_(options), run_id_(options.run_id.empty() ? new_run_id() : options.run_id) {}
+  // `expected`: --expect's lines (the patterns no case of the grid matches are warned of).
+  Runner(Registry& registry, const RunOptions& options, const std::vector<Expectation>& expected)
+      : registry_(registry),
+        opt_(options),
+        expected_(expected),
+        run_id_(options.run_id.empty() ? new_run_id() : options.run_id),
+        keep_outcomes_(!options.expect.empty() || !options.junit.empty() || !write_expect_path(options).empty()) {}
 
   int run(const std::vector<RunRequest>& requests) {
     try {
@@ -139,17 +145,16 @@ class Runner {
                          {"gpu_pci_id", gpu_id.pci_id},
                          {"gpu_vbios_version", gpu_id.vbios_version}});
 
-    // Expand every request first so progress can say "case i of n"; with --shard, this shard's units only.
+    // Count every request's cases first (walked, not built) so progress can say "case i of n"; with
+    // --shard, this shard's units only. The units are made one at a time as the run reaches them.
     const std::vector<Planned> plan = make_plan(registry_, requests, opt_, !gl_.is_software_renderer());
-    const std::vector<RunUnit> units = plan_units(plan, opt_, opt_.shard);
     note_grid(plan);
-    size_t total_cases = 0;
-    for (const auto& u : units) total_cases += u.rows();
+    const size_t total_cases = UnitStream(plan, opt_, opt_.shard).count_rows();
     progress_ = std::make_unique<Progress>(opt_.progress, total_cases);
     watchdog_ = std::make_unique<Watchdog>(opt_.timeout_s, opt_.out, opt_.progress);
     account_.start_s = seconds_since(opt_.started);
-    for (const auto& u : units) {
-      if (signals_.stopped()) break;
+    UnitStream units(plan, opt_, opt_.shard);
+    for (RunUnit u; !signals_.stopped() && units.next(u);) {
       if (u.isolated)
         run_isolated(plan[u.planned], u.group.cases[0]);
       else
@@ -183,7 +188,8 @@ class Runner {
     // Without a context the entry's own sizes (a software renderer's).
     const std::vector<Planned> plan = make_plan(registry_, requests, opt_, false);
     note_grid(plan);
-    for (const auto& u : plan_units(plan, opt_, opt_.shard))
+    UnitStream units(plan, opt_, opt_.shard);
+    for (RunUnit u; units.next(u);)
       for (size_t i = 0; i < u.group.cases.size(); ++i) {
         if (u.group.shadow[i]) continue;
         CaseRecord rec = new_record(u.group.cases[i], plan[u.planned]);
@@ -590,16 +596,23 @@ class Runner {
     ++cases_done_;
   }
 
-  // Every case of the whole grid, every shard's: what an --expect pattern may match.
+  // The --expect patterns that match no case of the whole grid (every shard's), walked key by key until
+  // every pattern matched one.
   void note_grid(const std::vector<Planned>& plan) {
-    for (const auto& u : plan_units(plan, opt_))
-      for (size_t i = 0; i < u.group.cases.size(); ++i)
-        if (!u.group.shadow[i])
-          grid_keys_.push_back(case_key(plan[u.planned].exp->name(), plan[u.planned].res, u.group.cases[i]));
+    if (expected_.empty()) return;
+    unmatched_ = unmatched_patterns(expected_, [&](const std::function<bool(const std::string&)>& visit) {
+      bool more = true;
+      for (const auto& p : plan) {
+        p.grid->for_each([&](const ParamSet& c) { return more = visit(case_key(p.exp->name(), p.res, c)); });
+        if (!more) return;
+      }
+    });
   }
 
-  // A case's outcome from its total row (--expect, --junit).
+  // A case's outcome from its total row (--expect, --junit, --write-expect; without them none is kept, so
+  // a run of millions of cases does not grow with them).
   void add_outcome(const std::string& key, const Row& row) {
+    if (!keep_outcomes_) return;
     Outcome o;
     o.key = key;
     o.experiment = row.count("experiment") ? row.at("experiment") : "";
@@ -615,7 +628,7 @@ class Runner {
 
  public:
   const std::vector<Outcome>& outcomes() const { return outcomes_; }
-  const std::vector<std::string>& grid_keys() const { return grid_keys_; }
+  const std::vector<std::string>& unmatched() const { return unmatched_; }
   const Row& run_columns() const { return run_columns_; }
 
  private:
@@ -738,7 +751,9 @@ class Runner {
 
   Registry& registry_;
   const RunOptions& opt_;
+  const std::vector<Expectation>& expected_;
   const std::string run_id_;
+  const bool keep_outcomes_;
   SignalGuard signals_;
   std::unique_ptr<Context> ctx_;
   GlInfo gl_;
@@ -751,7 +766,7 @@ class Runner {
   Row run_columns_;
   std::map<Status, int> counts_;
   std::vector<Outcome> outcomes_;       // every case this run wrote, in order
-  std::vector<std::string> grid_keys_;  // every case of the grid, every shard's
+  std::vector<std::string> unmatched_;  // --expect patterns that match no case of the grid
   size_t cases_done_ = 0;
   int group_index_ = 0;  // interleaved groups run so far (the raw rows' group)
   std::unique_ptr<Progress> progress_;
@@ -790,17 +805,16 @@ class HardwareSetError : public UsageError {
 };
 
 // A baseline no case of the grid has would name a case that never runs: refused.
-void check_baseline_in_grid(const std::map<std::string, std::string>& baseline, const std::vector<ParamSet>& cases) {
-  if (baseline.empty()) return;
-  for (const auto& c : cases)
-    if (has_baseline_values(c, baseline)) return;
+void check_baseline_in_grid(const std::map<std::string, std::string>& baseline, const CaseGrid& grid) {
+  if (baseline.empty() || grid.has_case_with(baseline)) return;
   throw UsageError("the baseline " + baseline_text(baseline) +
                    " is not a case of the grid, so it would never run: add its values to the grid (e.g. --set " +
                    baseline.begin()->first + "=...," + baseline.begin()->second + ") or choose another baseline");
 }
 
-// One request against the registry; returns its number of cases.
-size_t check_request(const Registry& registry, const RunRequest& r, bool quick, size_t max_cases) {
+// One request against the registry; returns its grids (a software renderer's, and a hardware driver's where
+// it has a hardware set), checked but not counted.
+std::vector<CaseGrid> check_request(const Registry& registry, const RunRequest& r, bool quick, size_t max_cases) {
   const Experiment* e = registry.find(r.experiment);
   if (!e)
     throw UsageError("unknown experiment '" + r.experiment + "'; valid experiments: " + registry.names() + ", all");
@@ -817,7 +831,7 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
   }
   // The grid on a software renderer and, where the entry has a hardware "set", the one on hardware: both
   // must be valid wherever the check runs.
-  size_t most = 0;
+  std::vector<CaseGrid> grids;
   for (bool hardware : {false, true}) {
     if (hardware && (!r.hardware || r.hardware->set.empty())) break;
     const auto overrides = request_overrides(r, hardware);
@@ -839,17 +853,26 @@ size_t check_request(const Registry& registry, const RunRequest& r, bool quick, 
       }
     }
     try {
-      // a scoped --set that no case uses, a grid too large, a case the experiment's data rules out
-      auto cases = expand_grid(specs, overrides, quick || r.quick, max_cases);
-      e->check_cases(cases);
-      check_baseline_in_grid(r.baseline, cases);
-      most = std::max(most, cases.size());
+      // a grid too large, a scoped --set that no case uses, a case the experiment's data rules out: the
+      // grid is walked, never built (core/grid.hpp)
+      CaseGrid grid(specs, overrides, quick || r.quick, max_cases);
+      grid.check_overrides_apply();
+      if (const auto names = e->checked_params(); !names.empty()) e->check_cases(grid.distinct(names));
+      check_baseline_in_grid(r.baseline, grid);
+      grids.push_back(std::move(grid));
     } catch (const UsageError& err) {
       // The software grid passed: on hardware, what differs is the hardware set.
       if (hardware) throw HardwareSetError("experiment '" + e->name() + "' on a hardware driver: " + err.what());
       throw UsageError("experiment '" + e->name() + "': " + err.what());
     }
   }
+  return grids;
+}
+
+// The most cases of a request's grids: `exact` counts them (a walk), else the products bound them.
+size_t most_cases(const std::vector<CaseGrid>& grids, bool exact) {
+  size_t most = 0;
+  for (const auto& g : grids) most = std::max(most, exact ? g.count() : static_cast<size_t>(g.raw_size()));
   return most;
 }
 }  // namespace
@@ -863,10 +886,11 @@ std::map<std::string, std::vector<std::string>> request_overrides(const RunReque
 
 void check_requests(const Registry& registry, const std::vector<RunRequest>& requests, bool quick, size_t max_cases) {
   if (requests.empty()) throw UsageError("nothing to run; experiments: " + registry.names());
-  size_t total = 0;
+  std::vector<std::vector<CaseGrid>> grids;
+  size_t bound = 0;  // the products: counting (a walk of every number) only where they exceed max_cases
   for (const auto& r : requests) {
     try {
-      total += check_request(registry, r, quick, max_cases);
+      grids.push_back(check_request(registry, r, quick, max_cases));
     } catch (const HardwareSetError& e) {
       const std::string at = r.hardware && !r.hardware->origin.empty() ? r.hardware->origin
                              : r.origin.empty()                        ? std::string("hardware.set")
@@ -876,6 +900,10 @@ void check_requests(const Registry& registry, const std::vector<RunRequest>& req
       if (r.origin.empty()) throw;
       throw UsageError(r.origin + ": " + e.what());
     }
+    bound += most_cases(grids.back(), false);
+    if (bound <= max_cases) continue;
+    size_t total = 0;
+    for (const auto& g : grids) total += most_cases(g, true);
     if (total > max_cases)
       throw UsageError("the run has " + std::to_string(total) + " cases or more, more than " +
                        std::to_string(max_cases) + "; narrow a --set list or the experiments, or raise --max-cases");
@@ -887,9 +915,9 @@ int run_experiments(Registry& registry, const std::vector<RunRequest>& requests,
   // A malformed baseline is a usage error before any work.
   const std::vector<Expectation> baseline =
       options.expect.empty() ? std::vector<Expectation>{} : load_expectations(options.expect);
-  Runner runner(registry, options);
+  Runner runner(registry, options, baseline);
   const int code = runner.run(requests);
-  return report_outcomes(options, baseline, runner.outcomes(), runner.grid_keys(), runner.run_columns(), code);
+  return report_outcomes(options, baseline, runner.outcomes(), runner.unmatched(), runner.run_columns(), code);
 }
 
 std::string default_shader_root() { return data_dir("shaders"); }

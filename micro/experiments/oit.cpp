@@ -139,11 +139,12 @@ std::pair<ParamSpec, ParamSpec> shadow_params() {
                               4096};
   // Read only where the case's scene and effects hold self-shadowing: elsewhere unused (empty in the
   // rows), so a list of them does not multiply those cases in a grid that mixes scenes, and a list
-  // where no case holds it is a usage error (expand_grid).
+  // where no case holds it is a usage error (CaseGrid::check_overrides_apply).
   const auto shadowing = holds_self_shadowing();
   for (ParamSpec* s : {&shadow_slices, &shadow_resolution}) {
     s->applies_if = shadowing;
     s->applies_if_text = "the case's scene and effects hold self-shadowing";
+    s->applies_if_reads = {"scene", "effects"};
   }
   return {shadow_slices, shadow_resolution};
 }
@@ -310,6 +311,7 @@ class OitExperiment final : public Experiment {
       }
     }
   }
+  std::vector<std::string> checked_params() const override { return {"scene", "view", "effects"}; }
   Resolution default_resolution() const override { return {512, 512}; }
   Resolution quick_resolution() const override { return {128, 128}; }
   // Each case holds its node pool (pixels x depth): up to 8 cases while they hold at most 2^20 pixels

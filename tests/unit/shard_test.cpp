@@ -146,7 +146,7 @@ std::string check_shards(const std::vector<Planned>& plan, const std::vector<Run
       for (size_t i = 0; i < u.group.cases.size(); ++i) {
         const auto& p = plan[u.planned];
         if (u.isolated || p.baseline.empty() || u.group.baseline_of[i] >= 0) continue;
-        for (const auto& other : p.cases)
+        for (const auto& other : p.grid->cases())
           if (is_baseline_of(other, u.group.cases[i], p.baseline) && p.exp->max_interleave(p.res) > 1)
             return "a case is in a unit without its baseline: " + unit_text(plan, u);
       }
