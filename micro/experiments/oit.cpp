@@ -109,9 +109,10 @@ ExactParams exact_params() {
                        {},
                        block_sort_names()};
   ParamSpec order_check{"order_check",
-                        "IS and IMS resolves: on checks each pixel's list order while loading it and skips the "
-                        "sort of a list already far-to-near and reverses one near-to-far in O(n) (the lists "
-                        "of front-to-back or back-to-front submission); off sorts every list (the papers)",
+                        "IS, IMS and RBS-L resolves: on checks each pixel's list order while loading it and skips "
+                        "the sort (and RBS-L's merge) of a list already far-to-near and blends one near-to-far "
+                        "backwards in O(n) (the lists of front-to-back or back-to-front submission); off sorts "
+                        "every list (the papers)",
                         {"off"},
                         {},
                         {"off", "on"}};

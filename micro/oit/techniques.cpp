@@ -36,6 +36,7 @@ const Params kCaptured = {"frag_colour", "frag_depth", "initial_pool"};
 const Params kShaderResolve = kCaptured + Params{"max_frags"};
 const Params kInsertion = kShaderResolve + Params{"order_check"};  // IS, IMS: the order check
 const Params kRegisters = kShaderResolve + Params{"block", "block_sort"};
+const Params kRegistersLocal = kRegisters + Params{"order_check"};  // RBS-L: the order check too
 const Params kCompute = {"cs_group"};
 const Params kPeel = {"max_layers", "tie_rule"};
 const Params kFlicker = {"flicker_runs"};
@@ -75,14 +76,14 @@ std::vector<Technique> build_table() {
   return {
       exact("BASE-IS", S::Base, "IS", R::IS, kInsertion, true),
       exact("BASE-IMS", S::Base, "IMS", R::IMS, kInsertion, false),
-      exact("BASE-RBS-L", S::Base, "RBS-L", R::RBS_L, kRegisters, true),
+      exact("BASE-RBS-L", S::Base, "RBS-L", R::RBS_L, kRegistersLocal, true),
       exact("BMA-IS", S::Bma, "IS", R::IS, kInsertion, true),
       exact("BMA-IMS", S::Bma, "IMS", R::IMS, kInsertion, false),
-      exact("BMA-RBS-L", S::Bma, "RBS-L", R::RBS_L, kRegisters, true),
+      exact("BMA-RBS-L", S::Bma, "RBS-L", R::RBS_L, kRegistersLocal, true),
       exact("CPU-NATIVE", S::Cpu, "NATIVE", std::nullopt, kCaptured, true),
       exact("CS-IS", S::Compute, "IS", R::IS, kInsertion + kCompute, false),
       exact("CS-IMS", S::Compute, "IMS", R::IMS, kInsertion + kCompute, false),
-      exact("CS-RBS-L", S::Compute, "RBS-L", R::RBS_L, kRegisters + kCompute, false),
+      exact("CS-RBS-L", S::Compute, "RBS-L", R::RBS_L, kRegistersLocal + kCompute, false),
       exact("RBS-G", S::Global, "RBS", R::RBS_G, kRegisters, false),
       exact("BMA-AUTO", S::Bma, "AUTO", std::nullopt, kShaderResolve + Params{"block", "bma_auto_cache"}, false),
       other("DP", F::Peel, static_cast<int>(PeelKind::Depth), kPeel, make_peel_case),

@@ -50,9 +50,35 @@ FRAG_T registers[RBS_M];
 #define RBS_PAD(i)
 #endif
 
+// SORT_ORDER_CHECK (RBS-L, the order_check parameter): the list's order is checked while its blocks
+// load, as resolve_pixel.glsl does for IS: a list already far-to-near is blended as it is, one
+// near-to-far backwards, with no sort and no merge; a block is sorted only once the list has shown
+// itself neither (a mixed list turns so within its first block, so the check costs it little).
+#if defined(SORT_ORDER_CHECK) && defined(SORT_RBS)
+bool rbsOrdered, rbsReversed, rbsHasPrev;  // this pixel's list so far: far-to-near, near-to-far
+FRAG_T rbsPrev;                            // its last fragment, kept in a register
+void rbs_check_begin() {
+  rbsOrdered = true;
+  rbsReversed = true;
+  rbsHasPrev = false;
+}
+#define RBS_CHECK(f)                                 \
+  if (rbsHasPrev) {                                  \
+    rbsOrdered = rbsOrdered && !SORT_GT(rbsPrev, f); \
+    rbsReversed = rbsReversed && !SORT_GT(f, rbsPrev); \
+  }                                                  \
+  rbsPrev = f;                                       \
+  rbsHasPrev = true;
+#define RBS_MIXED() (!rbsOrdered && !rbsReversed)
+#elif defined(SORT_ORDER_CHECK) && defined(SORT_RBS_G)
+#error "the order check is RBS-L's (RBS-G writes its sorted blocks back in place)"
+#else
+#define RBS_CHECK(f)
+#endif
+
 // Reads up to RBS_M fragments of the list from `node` into registers (a network's padding after
 // them); returns how many.
-#define RBS_LOAD(i) if (FRAG_VALID(node)) { registers[i] = FRAG_LOAD(node); node = FRAG_NEXT(node); m = (i) + 1; } RBS_PAD(i)
+#define RBS_LOAD(i) if (FRAG_VALID(node)) { registers[i] = FRAG_LOAD(node); RBS_CHECK(registers[i]) node = FRAG_NEXT(node); m = (i) + 1; } RBS_PAD(i)
 int load_block(inout uint node) {
   int m = 0;
   SORT_EACH_INDEX(RBS_LOAD)
@@ -61,9 +87,20 @@ int load_block(inout uint node) {
 
 #if defined(SORT_RBS) && MAX_K == 1
 vec3 resolve_pixel(uint node) {
+#if defined(SORT_ORDER_CHECK)
+  rbs_check_begin();
+#endif
   int m = load_block(node);
-  RBS_SORT_BLOCK(m);
   vec3 c = backdrop;
+#if defined(SORT_ORDER_CHECK)
+  if (rbsReversed && !rbsOrdered) {  // near-to-far: blended from its far end
+#define RBS_BLEND_BACK(i) if (RBS_M - 1 - (i) < m) c = blend_over(c, registers[RBS_M - 1 - (i)]);
+    SORT_EACH_INDEX(RBS_BLEND_BACK)
+    return c;
+  }
+  if (!rbsOrdered)
+#endif
+  RBS_SORT_BLOCK(m);
 #define RBS_BLEND(i) if ((i) < m) c = blend_over(c, registers[i]);
   SORT_EACH_INDEX(RBS_BLEND)
   return c;
@@ -73,14 +110,41 @@ FRAG_T frags[MAX_FRAGS];  // the sorted blocks (local memory)
 
 vec3 resolve_pixel(uint node) {
   int n = 0, k = 0;
+#if defined(SORT_ORDER_CHECK)
+  rbs_check_begin();
+  int unsortedBlocks = 0;  // blocks stored near-to-far while the list still looked reversed
+#endif
   while (FRAG_VALID(node) && k < MAX_K) {
     int m = load_block(node);
+#if defined(SORT_ORDER_CHECK)
+    if (!RBS_MIXED()) {
+      if (!rbsOrdered) unsortedBlocks = k + 1;  // stored as loaded: sorted only if the list turns mixed
+    } else
+#endif
     RBS_SORT_BLOCK(m);
 #define RBS_STORE(i) if ((i) < m) frags[k * RBS_M + (i)] = registers[i];
     SORT_EACH_INDEX(RBS_STORE)
     n += m;
     ++k;
   }
+#if defined(SORT_ORDER_CHECK)
+  vec3 c0 = backdrop;
+  if (rbsOrdered) {  // far-to-near as it is: no merge
+    for (int i = 0; i < n; ++i) c0 = blend_over(c0, frags[i]);
+    return c0;
+  }
+  if (rbsReversed) {  // near-to-far: blended from its far end
+    for (int i = n - 1; i >= 0; --i) c0 = blend_over(c0, frags[i]);
+    return c0;
+  }
+  // Mixed after a near-to-far start: the blocks stored unsorted are reversed, which sorts them.
+  for (int j = 0; j < unsortedBlocks; ++j)
+    for (int i = j * RBS_M, e = min((j + 1) * RBS_M, n) - 1; i < e; ++i, --e) {
+      FRAG_T t = frags[i];
+      frags[i] = frags[e];
+      frags[e] = t;
+    }
+#endif
   // k-way merge: the candidate (deepest remaining fragment) of each block stays in a register.
   FRAG_T candidate[MAX_K];
   int blockIdx[MAX_K], blockEnd[MAX_K];

@@ -58,24 +58,29 @@ TEST_F(OitCompute, NetworkBlockSortsMatchTheCpuReference) {
 }
 
 // The order check: sorted lists (fwd) skip the sort, reversed ones (rev) are reversed, mixed ones
-// (the hairball) are sorted; IS and IMS, fragment and compute resolves, PPLL and PPPA (whose lists
-// arrive in the opposite order).
+// (the hairball) are sorted; IS, IMS and RBS-L (its blocks of 8 merged, or one block of 32 with
+// max_frags 32, networks and RS), fragment and compute resolves, PPLL and PPPA (whose lists arrive in
+// the opposite order).
 TEST_F(OitCompute, OrderCheckedResolvesMatchTheCpuReference) {
-  for (const char* technique : {"BASE-IS", "CS-IMS", "BMA-IS"})
+  for (const char* technique : {"BASE-IS", "CS-IMS", "BMA-IS", "CS-RBS-L", "BASE-RBS-L", "BMA-RBS-L"})
     for (const char* capture : {"PPLL", "PPPA"})
       for (auto [scene, view] : {std::pair{"planes", "fwd"}, {"planes", "rev"}, {"hairball", "rev"}}) {
         auto p = small(scene, view, technique);
         p["order_check"] = "on";
         p["capture"] = capture;
+        if (std::string(technique) == "CS-RBS-L") p["block_sort"] = "bitonic";
+        if (std::string(technique) == "BMA-RBS-L") {  // one block: RBS-L's path without a merge
+          p["block"] = "32";
+          p["max_frags"] = "32";
+          p["block_sort"] = "odd-even-merge";
+        }
         auto v = run_case("oit", p);
         EXPECT_TRUE(v.valid) << technique << " " << capture << " " << scene << " " << view << ": " << v.reason;
       }
-  for (const char* technique : {"BASE-IS", "CS-RBS-L"}) {
+  for (const char* technique : {"BASE-IS", "CS-RBS-L", "BASE-RBS-L"}) {
     auto p = small("planes", "rev", technique);
-    if (std::string(technique) == "BASE-IS")
-      p["order_check"] = "on";
-    else
-      p["block_sort"] = "bitonic";
+    if (std::string(technique) != "CS-RBS-L") p["order_check"] = "on";
+    if (std::string(technique) != "BASE-IS") p["block_sort"] = "bitonic";
     p["fault"] = "wrong-result";
     auto v = run_case("oit", p);
     EXPECT_FALSE(v.valid) << technique;

@@ -66,7 +66,7 @@ Defines sort_defines(const SortChoice& c, unsigned max_frags, unsigned block, bo
     d.push_back({c.block == BlockSort::Bitonic ? "SORT_NETWORK_BITONIC" : "SORT_NETWORK_ODD_EVEN_MERGE", ""});
     if (packed_key64) d.push_back({"SORT_PACKED_KEY64", ""});
   }
-  if (!rbs && c.order_check) d.push_back({"SORT_ORDER_CHECK", ""});
+  if (c.order_check && c.sort != ResolveSort::RBS_G) d.push_back({"SORT_ORDER_CHECK", ""});
   return d;
 }
 

@@ -19,8 +19,8 @@ const std::vector<std::string>& block_sort_names();   // "insertion", "bitonic",
 BlockSort parse_block_sort(const std::string& name);  // throws std::invalid_argument naming the valid ones
 
 // One resolve sort in full: the sort, RBS's block sort, and whether the resolve checks the order
-// of each pixel's list while loading it (IS, IMS: the `order_check` parameter; a list already
-// far-to-near skips the sort, one near-to-far is reversed in O(n)).
+// of each pixel's list while loading it (IS, IMS, RBS-L: the `order_check` parameter; a list already
+// far-to-near skips the sort, one near-to-far is reversed in O(n); RBS-L also skips its merge).
 struct SortChoice {
   ResolveSort sort = ResolveSort::IS;
   BlockSort block = BlockSort::Insertion;
@@ -37,7 +37,7 @@ ResolveSort parse_sort_label(const std::string& label);  // the inverse; throws 
 // SORT_RBS_G (RBS_M, MAX_K); the register block is min(block, max_frags). A network block sort adds
 // SORT_NETWORK_BITONIC or SORT_NETWORK_ODD_EVEN_MERGE, and SORT_PACKED_KEY64 when `packed_key64`
 // (the caller knows the fragment format packs into a 64-bit key and the driver has int64); an
-// order check adds SORT_ORDER_CHECK (IS and IMS only).
+// order check adds SORT_ORDER_CHECK (IS, IMS and RBS-L; not RBS-G).
 Defines sort_defines(ResolveSort sort, unsigned max_frags, unsigned block);
 Defines sort_defines(const SortChoice& choice, unsigned max_frags, unsigned block, bool packed_key64);
 // The library files (relative to the shader root) a resolve with these defines compiles, in the

@@ -275,7 +275,22 @@ def resolve_label(r):
         label += "/" + r["block_sort"]
     if r.get("order_check") == "on":
         label += "+order-check"
+    if r.get("capture") == "PPPA":
+        label += " on PPPA"
     return label
+
+
+def host_identification(r):
+    """What tells two hosts' resolve speedups apart (issue 32: llvmpipe's JIT follows the CPU's vector
+    extensions): the CPU's vendor, family/model/stepping, whether it has AVX-512, LLVM and its vector width."""
+    isa = (r.get("cpu_isa") or "").split()
+    if not isa and not r.get("cpu_family"):
+        return "not recorded (rows without the cpu_isa column)"
+    cpu = " ".join(x for x in (r.get("cpu_model"), r.get("cpu_vendor")) if x)
+    fms = "/".join(r.get(k) or "?" for k in ("cpu_family", "cpu_model_id", "cpu_stepping"))
+    avx = "AVX-512" if any(x.startswith("avx512") for x in isa) else "AVX2" if "avx2" in isa else "no AVX2"
+    llvm = f"LLVM {r.get('llvm_version') or '?'}, {r.get('llvm_vector_bits') or '?'}-bit vectors"
+    return f"{cpu} (family/model/stepping {fms}), {avx}, {r.get('cpu_count') or '?'} CPUs; {llvm}"
 
 
 def speedup_text(entry, pass_):
@@ -306,7 +321,12 @@ def section_resolve_speedups(f):
                   + f". The order check's candidates are paired with {BASE} with the order check, chained "
                   f"through that one's pair with plain {BASE}, so every speedup below is over plain {BASE}. "
                   f"`resolve` and `total` passes; blocks of 32 for {CS_RBS}. Goals: the paper's best resolve "
-                  f"speedup on planes rev ({RESOLVE_GOAL_REV:g}x) and {RESOLVE_GOAL_FWD:g}x on every fwd view.", ""]
+                  f"speedup on planes rev ({RESOLVE_GOAL_REV:g}x) and {RESOLVE_GOAL_FWD:g}x on every fwd view. "
+                  "Candidates \"on PPPA\" captured into packed per-pixel arrays; every other row, and every "
+                  "baseline, into linked lists.", "",
+                  f"Host: {host_identification(r0)}. The same binary and Mesa give other speedups on another CPU "
+                  "(llvmpipe compiles for the CPU it runs on: docs/drivers.md#llvmpipe-compiles-for-this-cpu); "
+                  "compare speedups across hosts only with this line beside them.", ""]
         speed, base_ms = {}, {}
         for pass_ in ("resolve", "total"):
             by_view = {}
