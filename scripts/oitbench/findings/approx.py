@@ -1,9 +1,11 @@
 """FINDINGS.md's sections on approximate OIT: the approximate techniques, error against time and line rendering."""
 from oitbench import figures as plot
 from oitbench import papers as tables
+from oitbench import techniques
 from oitbench.findings.common import (
     BASE_IMS, BLENDS, DASH, PER_PIXEL_ARRAY, UNSORTED, WEIGHTED_BLEND, RMSE_FLOOR, f_err, f_m, f_ms, f_x, field, missing, ms, num, ratio, res,
     scene_key, sizes_of, span, table, verdict, view_key, word)
+EXACT = set(techniques.names("exact"))  # the exact family: not MBOIT, STOCHASTIC, WOIT or SLAB, which are approximate too
 
 
 def approx_key(r):
@@ -82,7 +84,7 @@ def section_approx(f):
     if any(tex):
         lines.append(f"- {a} against {b} in the 3D texture: {span(tex)}x, {verdict(tex)}.")
     for s in scenes:
-        exact = {k[0]: ms(v[s]) for k, v in cases.items() if s in v and k[0] not in plot.OIT_APPROX}
+        exact = {k[0]: ms(v[s]) for k, v in cases.items() if s in v and k[0] in EXACT}
         ppa = {approx_label(v[s]): ms(v[s]) for k, v in cases.items() if s in v and k[0] in PER_PIXEL_ARRAY}
         if exact and ppa:
             fe = min(exact, key=lambda k: (exact[k], k))
@@ -135,7 +137,7 @@ def section_error_vs_time(f):
         pts = [(ms(r), max(num(r, "rmse") or 0.0, RMSE_FLOOR), plot.oit_label(r), r) for r in g
                if num(r, "rmse") is not None]
         front = plot.pareto_front(pts)
-        exact = [r for r in g if r["technique"] not in plot.OIT_APPROX]
+        exact = [r for r in g if r["technique"] in EXACT]
         ppa = [r for r in g if r["technique"] in PER_PIXEL_ARRAY]
         fe = min(exact, key=lambda r: (ms(r), r["technique"])) if exact else None
         fa = min(ppa, key=lambda r: (ms(r), plot.oit_label(r))) if ppa else None
