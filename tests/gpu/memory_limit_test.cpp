@@ -64,5 +64,29 @@ TEST(MemoryLimit, TheLimitOptionDecidesASmallCase) {
   EXPECT_EQ(ran["status"], "ok") << ran["reason"];
 }
 
+// The approximate techniques' node arrays are in the estimate too: MLAB with 64 nodes at 128x128 holds
+// 16,384 pixels x 64 x 8 B (8 MiB), refused under 4M with what it is for, run under 1G.
+TEST(MemoryLimit, TheNodeArraysOfAnApproximateTechniqueAreHeldAgainstTheLimit) {
+  auto dir = temp_dir("memory-nodes");
+  auto run = [&](const std::string& name, const std::string& limit) {
+    const fs::path csv = dir / (name + ".csv");
+    auto r = run_oitbench(
+        {"run",   "oit",        "--set",         "scene=planes",   "--set",  "view=fwd", "--set",    "technique=MLAB",
+         "--set", "nodes=64",   "--resolution",  "128x128",        "--reps", "1",        "--warmup", "0",
+         "--out", csv.string(), "--no-progress", "--memory-limit", limit},
+        300);
+    auto rows = read_csv_rows(csv);
+    EXPECT_FALSE(rows.empty()) << r.err;
+    return std::make_pair(r.exit_code, rows.empty() ? Row{} : rows.back());
+  };
+  auto [refused_exit, refused] = run("refused", "4M");
+  EXPECT_EQ(refused_exit, 3);
+  EXPECT_EQ(refused["status"], "unsupported");
+  EXPECT_NE(refused["reason"].find("MLAB's node arrays"), std::string::npos) << refused["reason"];
+  EXPECT_NE(refused["reason"].find("limit 4.00 MiB (--memory-limit)"), std::string::npos) << refused["reason"];
+  auto [ran_exit, ran] = run("ran", "1G");
+  EXPECT_EQ(ran_exit, 0);
+  EXPECT_EQ(ran["status"], "ok") << ran["reason"];
+}
 }  // namespace
 }  // namespace oitbench

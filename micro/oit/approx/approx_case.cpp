@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/memory_budget.hpp"
 #include "gl/render_target.hpp"
 #include "oit/approx/approx.hpp"
 #include "oit/approx/approx_model.hpp"
@@ -106,6 +107,15 @@ class ApproxCase final : public OitCase {
     bool interlock = p.get("sync") == "interlock";
     if (arrays_ && interlock && !ctx.gl().has_extension("GL_ARB_fragment_shader_interlock"))
       throw Unsupported("sync=interlock needs GL_ARB_fragment_shader_interlock");
+    if (arrays_) {  // the technique's own storage, refused before the reference capture or anything else
+      const unsigned long long slots = static_cast<unsigned long long>(settings_.nodes) + (tech == T::Laat ? 1 : 0);
+      const unsigned long long pixels = static_cast<unsigned long long>(width_) * height_;
+      MemoryNeed need;  // the nodes' 8 bytes, the lock, and the AT family's and HT's accumulation targets
+      need.gpu_bytes = pixels * (slots * 8 + 4 + (at_family_ || ht_ ? 16 : 0) + (ht_ ? 4 : 0));
+      need.gpu_what = "the node arrays (" + format_count(pixels) + " pixels x " + std::to_string(slots) +
+                      " nodes x 8 B, the locks and accumulation targets)";
+      require_memory(need, ctx.memory(), p.get("technique") + "'s node arrays:");
+    }
 
     const View& view = passes_.view();
     glm::mat4 vp = passes_.view_projection();
