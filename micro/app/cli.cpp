@@ -36,8 +36,9 @@ struct CliState {
   RunCommand run;
   double target_ci_pct = 0;
   bool no_interleave = false, no_progress = false, no_program_cache = false;
-  std::string shard;         // --shard I/N or auto
-  std::string memory_limit;  // --memory-limit SIZE as given
+  std::string shard;              // --shard I/N or auto
+  std::string memory_limit;       // --memory-limit SIZE as given
+  std::string view_memory_limit;  // view's
   RenderCommand render;
   viewer::ViewerOptions view;
 };
@@ -73,6 +74,20 @@ constexpr const char* kExitCodes =
 
 // --device N|cuda:N|drm:PATH|auto into the EGL device index (backends/device_select.hpp); exit 2 listing
 // the devices when it names none. Anything but a plain index says on stderr how it chose.
+// --memory-limit's SIZE (run and view): what parse_byte_size accepts, its message where it does not.
+CLI::Validator byte_size_validator() {
+  return CLI::Validator(
+      [](std::string& text) {
+        try {
+          parse_byte_size(text);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      },
+      "SIZE");
+}
+
 void resolve_device(CliState& s) {
   std::vector<DeviceDescription> devices;
   for (const auto& d : list_egl_devices()) devices.push_back(d);
@@ -232,16 +247,7 @@ void declare_run_execution(CLI::App& run, CliState& s) {
                  "The most memory one case may hold: CPU memory, and on a software renderer its GPU buffers too "
                  "(SIZE: 8G, 512M, ...; default: MemAvailable and this process's RLIMIT_AS/RLIMIT_DATA). A case "
                  "whose estimate is larger is unsupported, decided before it allocates")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            try {
-              parse_byte_size(text);
-              return std::string();
-            } catch (const std::invalid_argument& e) {
-              return std::string(e.what());
-            }
-          },
-          "SIZE"));
+      ->check(byte_size_validator());
   run.add_option("--timeout", o.timeout_s, "Watchdog: seconds a case may take before it is killed (status timeout)")
       ->check(number({0, kWeekSeconds, true, false, false, "seconds"}));
   run.add_flag("--no-progress", s.no_progress, "No progress line on stderr");
@@ -373,6 +379,10 @@ void declare_view(CLI::App& view, CliState& s) {
   view.add_option("--save-view", v.save_view,
                   "Name for the view V saves (taken: NAME-2, ...; default view-1, view-2, ...)");
   view.add_flag("--gl-debug", v.gl_debug, "Print KHR_debug messages to stderr");
+  view.add_option("--memory-limit", s.view_memory_limit,
+                  "The most memory a case may hold, as in run (SIZE: 8G, 512M, ...; default: MemAvailable and "
+                  "this process's RLIMIT_AS/RLIMIT_DATA): a technique whose estimate is larger is not built")
+      ->check(byte_size_validator());
   view.footer(std::string("Keys:\n") + viewer::key_help() +
               "\n\nExit codes: 0 done, 1 a case could not be built or a view/screenshot not saved, 2 usage error,\n"
               "3 no display or no GL context (run under xvfb-run -a).");
@@ -380,6 +390,7 @@ void declare_view(CLI::App& view, CliState& s) {
 
 int execute_view(const CLI::App&, CliState& s) {
   apply_context(s);
+  if (!s.view_memory_limit.empty()) s.view.memory_limit = parse_byte_size(s.view_memory_limit);
   return viewer::run_viewer(s.registry, s.view);
 }
 

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/memory_budget.hpp"
 #include "core/presets.hpp"
 #include "core/runner.hpp"
 #include "oit/capture/fragment_storage.hpp"
@@ -295,6 +296,9 @@ class Viewer {
         throw Unsupported(why);
       auto cctx = std::make_unique<CaseContext>(*shaders_, gl_, Resolution{fb.x, fb.y}, settings_.get("fault"),
                                                 static_cast<unsigned>(settings_.params().get_int("seed")));
+      // Held against the memory limit like a run's cases: a technique that cannot be held is not built.
+      cctx->set_memory(current_memory_limits(gl_.is_software_renderer(), gl_.has_extension("GL_NVX_gpu_memory_info"),
+                                             gl_.has_extension("GL_ATI_meminfo"), options_.memory_limit));
       auto c = oit::make_oit_case(settings_.params(), *cctx);
       case_ = std::move(c);
       case_context_ = std::move(cctx);

@@ -4,6 +4,7 @@
 // capture storage, per-pass timings and depth complexity on screen, and a key that saves the
 // camera as a named view into the scene file. `--frames`, `--keys` and `--screenshot` let tests
 // drive it under xvfb-run.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ struct ViewerOptions {
   std::string save_view;          // name for V (default view-1, view-2, ...)
   std::string shader_root;        // empty: the default shaders/
   bool gl_debug = false;
+  std::optional<unsigned long long> memory_limit;  // --memory-limit: replaces the CPU limit (core/memory_budget.hpp)
 };
 
 // The key table (for --help and the README).

@@ -116,6 +116,24 @@ TEST(Viewer, ATechniqueThatCannotBeBuiltKeepsThePreviousOneAndExitsOne) {
   EXPECT_TRUE(contains(r.err, "oitbench view: WBOIT:")) << r.err;  // the summary: still WBOIT
 }
 
+// The viewer's cases are held against the memory limit like a run's: MLAB's node arrays (64 nodes at
+// 128x128, 8 MiB) under --memory-limit 4M are not built (exit 1 naming them and the limit); under 1G
+// the same case is built and drawn.
+TEST(Viewer, ATechniqueOverTheMemoryLimitIsNotBuilt) {
+  auto view = [&](const char* limit) {
+    return run_oitbench({"view", "--scene", "planes", "--detail", "small", "--size", "128x128", "--technique", "MLAB",
+                         "--set", "nodes=64", "--frames", "2", "--memory-limit", limit},
+                        120);
+  };
+  auto refused = view("4M");
+  EXPECT_EQ(refused.exit_code, 1) << refused.err;
+  EXPECT_TRUE(contains(refused.err, "cannot build MLAB: MLAB's node arrays: needs 8.06 MiB")) << refused.err;
+  EXPECT_TRUE(contains(refused.err, "limit 4.00 MiB (--memory-limit)")) << refused.err;
+  auto built = view("1G");
+  EXPECT_EQ(built.exit_code, 0) << built.err;
+  EXPECT_TRUE(contains(built.err, "MLAB ready")) << built.err;
+}
+
 TEST(Viewer, SavesTheCameraAsANamedViewIntoTheSceneFile) {
   auto dir = temp_dir("viewer-save");
   std::string scene = (dir / "planes.json").string();
