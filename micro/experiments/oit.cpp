@@ -285,6 +285,9 @@ class OitExperiment final : public Experiment {
          "storage), so the reconstruction raised it tenfold (up to 1000x; the CPU model's count)"},
         {"model_off_channels", T::Integer, "",
          "MBOIT, WOIT: channel values more than the tolerance from the CPU model (up to 1% allowed)"},
+        {"half_blend_rounding", T::Text, "",
+         "WOIT with 16-bit coefficients: how the driver's blender rounds a sum into a half-float target, probed "
+         "at setup (nearest or toward-zero); the CPU model rounds its sums the same way"},
         {"msaa_samples", T::Integer, "", "STOCHASTIC: MSAA samples per pass (samples_per_pixel / passes)"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());

@@ -50,6 +50,11 @@ TEST_F(Wavelets, EveryVariantMatchesItsModel) {
           EXPECT_GT(metric(v, "rmse"), 0.0) << "an approximation";
           EXPECT_EQ(v.metrics.at("flicker_pixels"), "0") << "WOIT is order-independent and deterministic";
           EXPECT_EQ(std::stoi(v.metrics.at("bytes_per_pixel")), std::stoi(n) * std::stoi(bits) / 8 + 16);
+          // With the blender's half rounding probed, the model reproduces the 16-bit sums too.
+          EXPECT_LT(metric(v, "model_max_diff"), 1e-4) << basis << " " << scene << " " << n << " " << bits;
+          if (std::string(bits) == "16") {
+            EXPECT_TRUE(v.metrics.count("half_blend_rounding"));
+          }
         }
 }
 

@@ -51,6 +51,7 @@ class WoitCase final : public CapturedViewCase {
     s_.near_far = view_.near_far;
     s_.depth_range = view_.depth_range;
     make_targets();
+    if (s_.bits == 16) s_.half_truncates = blend_truncates_half(ctx);
     Defines d = view_.fx->geometry_defines();
     for (auto& x : view_.fx->depth_sampler_defines()) d.push_back(x);
     d.push_back({"WAVELET_COEFFS", std::to_string(s_.coeffs)});
@@ -117,6 +118,7 @@ class WoitCase final : public CapturedViewCase {
     referencing.end();
     ModelValidation mv = validate_against(model, kWaveletTolerance);
     mv.v.metrics["model_off_channels"] = std::to_string(mv.check.off);
+    if (s_.bits == 16) mv.v.metrics["half_blend_rounding"] = s_.half_truncates ? "toward-zero" : "nearest";
     add_output_problems(mv);
     // Where float and double warp a fragment into different cells, the transmittance of the
     // fragments behind it in that pixel moves by up to its cell's share of its absorbance: up to
@@ -132,6 +134,32 @@ class WoitCase final : public CapturedViewCase {
 
  private:
   GLint layers() const { return s_.coeffs / 4; }
+
+  // How the blender rounds a sum into a half-float target: 1 + 3/4096 lies between the halves 1 and
+  // 1 + 1/1024, nearer the second; round-to-nearest keeps that, truncation gives 1 (llvmpipe and
+  // lavapipe truncate). The model rounds the 16-bit sums the same way.
+  bool blend_truncates_half(CaseContext& ctx) {
+    gl::Texture probe = gl::make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(probe.get(), 1, GL_RGBA16F, 1, 1);
+    gl::Framebuffer fbo = gl::make_framebuffer();
+    glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, probe.get(), 0);
+    gl::Program prog =
+        ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "wavelets/half_probe.frag"}}, {});
+    glProgramUniform1f(prog.get(), glGetUniformLocation(prog.get(), "addend"), 3.0f / 4096.0f);
+    const float one[4] = {1, 1, 1, 1};
+    glClearNamedFramebufferfv(fbo.get(), GL_COLOR, 0, one);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+    glViewport(0, 0, 1, 1);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(prog.get());
+    quad_.draw();
+    glDisable(GL_BLEND);
+    float px[4] = {0, 0, 0, 0};
+    glGetTextureImage(probe.get(), 0, GL_RGBA, GL_FLOAT, sizeof(px), px);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return px[0] < 1.0f + 0.5f / 1024.0f;
+  }
 
   // The coefficients: one 2D array texture, 4 per layer, every layer a colour attachment of one pass.
   void make_targets() {

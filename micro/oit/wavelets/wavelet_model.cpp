@@ -17,6 +17,18 @@ constexpr int kMaxCoeffs = 32;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kSqrt2 = 1.41421356237309504880;
 
+// A float as a half-float target keeps it when the blender truncates (round toward zero).
+float truncate_to_half(float v) {
+  if (!std::isfinite(v) || v == 0.0f) return v;
+  float a = std::fabs(v), step = 5.9604644775390625e-08f;  // 2^-24: the subnormal halves' spacing
+  if (a >= 6.103515625e-05f) {
+    int e = 0;
+    std::frexp(a, &e);  // a = m 2^e, m in [0.5, 1): 11 significant bits
+    step = std::ldexp(1.0f, e - 11);
+  }
+  return std::copysign(std::min(std::trunc(a / step) * step, 65504.0f), v);
+}
+
 double absorbance_of(double alpha) {
   return alpha >= 1.0 ? kAbsorbanceMax : std::min(-std::log(1.0 - alpha), kAbsorbanceMax);
 }
@@ -74,7 +86,7 @@ double cosine_absorbance(const double* coeffs, int n, double x) {
 std::vector<double> woit_model(const HostLists& l, const Backdrop& bg, const WoitSettings& s) {
   const size_t pixels = l.heads.size();
   const int n = std::min(s.coeffs, kMaxCoeffs);
-  auto store = [&](float v) { return s.bits == 16 ? round_to_half(v) : v; };
+  auto store = [&](float v) { return s.bits != 16 ? v : s.half_truncates ? truncate_to_half(v) : round_to_half(v); };
   std::vector<double> out(pixels * 3);
   // Rows of pixels on every core: each pixel is independent.
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());

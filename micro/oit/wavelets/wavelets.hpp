@@ -27,6 +27,7 @@ enum class WaveletBasis { Haar, Cosine };
 struct WoitSettings {
   WaveletBasis basis = WaveletBasis::Haar;
   int coeffs = 16;                    // 8, 16, 32
+  bool half_truncates = false;        // 16-bit: the blender rounds sums toward zero (probed per driver)
   int bits = 32;                      // storage of the coefficients: 32 (RGBA32F) or 16 (RGBA16F)
   glm::vec2 near_far{0.1f, 10.f};     // the projection's planes (window depth back to view depth)
   glm::vec2 depth_range{0.1f, 10.f};  // the view depths the log warp maps to [0, 1]: the geometry's
