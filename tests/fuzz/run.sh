@@ -68,8 +68,8 @@ object() {
 }
 
 declare -A sources=(
-  [set_option]="micro/core/params.cpp"
-  [preset]="micro/core/presets.cpp micro/core/params.cpp micro/core/text_position.cpp micro/core/files.cpp micro/core/data_dirs.cpp"
+  [set_option]="micro/core/params.cpp micro/core/grid.cpp"
+  [preset]="micro/core/presets.cpp micro/core/params.cpp micro/core/grid.cpp micro/core/text_position.cpp micro/core/files.cpp micro/core/data_dirs.cpp"
   [scene]="micro/oit/scene/scene.cpp micro/core/text_position.cpp micro/core/files.cpp micro/core/data_dirs.cpp"
   [csv]="micro/core/csv.cpp micro/core/files.cpp"
 )
