@@ -355,7 +355,7 @@ def section_resolve_speedups(f):
                     # Candidates with the order check were divided by BASE with it: chain to plain BASE.
                     link = sp.get(CHECKED, {}).get(pass_)
                     for label, entry in sp.items():
-                        if label.endswith("+order-check") and label != CHECKED:
+                        if entry["row"].get("order_check") == "on" and label != CHECKED:
                             if entry.get(pass_) is not None and entry.get("chained_" + pass_) is None:
                                 entry["chained_" + pass_] = True
                                 entry[pass_] = entry[pass_] * link if link else None
