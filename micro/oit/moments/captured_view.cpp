@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "oit/case_support.hpp"
@@ -150,6 +151,15 @@ CapturedViewCase::ModelValidation CapturedViewCase::validate_against(const std::
   merge_shadow_check(m, mv.problems, view_.fx->validate_shadow());
   if (!mv.stats.error.empty()) mv.problems.push_back(mv.stats.error);
   return mv;
+}
+
+void CapturedViewCase::add_model_problem(ModelValidation& mv, const std::string& model, double tolerance,
+                                         size_t allowed) {
+  if (mv.check.off <= allowed) return;
+  std::string problem = std::to_string(mv.check.off) + " channel value(s) differ from " + model + " by more than " +
+                        std::to_string(std::lround(tolerance * 255.0)) + "/255";
+  if (allowed) problem += " (" + std::to_string(allowed) + " allowed)";
+  mv.problems.push_back(problem + "; first: " + mv.check.first_off);
 }
 
 void CapturedViewCase::add_output_problems(ModelValidation& mv) {

@@ -67,6 +67,9 @@ class CapturedViewCase : public OitCase {
   ModelValidation validate_against(const std::vector<double>& model, double tolerance);
   // Non-finite and out-of-range channels as problems (after the technique's own).
   static void add_output_problems(ModelValidation& mv);
+  // The problem when more than `allowed` channels differ from the technique's CPU model (`model`,
+  // e.g. "MBOIT's CPU model") by more than `tolerance` (written in 255ths, as the models' tolerances are).
+  static void add_model_problem(ModelValidation& mv, const std::string& model, double tolerance, size_t allowed = 0);
 
   int width_, height_;
   CapturedView view_;

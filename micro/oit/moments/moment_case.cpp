@@ -162,10 +162,7 @@ class MboitCase final : public CapturedViewCase {
     // 4 power moments in 32 bits), and with 16-bit sums they can disagree on raising the bias. Up
     // to 1% of the channels may differ; the wrong-result fault changes 12.5% of the pixels.
     const size_t allowed = mv.rgb.size() / 100;
-    if (mv.check.off > allowed)
-      mv.problems.push_back(std::to_string(mv.check.off) +
-                            " channel value(s) differ from MBOIT's CPU model by more than 4/255 (" +
-                            std::to_string(allowed) + " allowed); first: " + mv.check.first_off);
+    add_model_problem(mv, "MBOIT's CPU model", kMomentTolerance, allowed);
     conclude(mv.v, mv.problems);
     return mv.v;
   }

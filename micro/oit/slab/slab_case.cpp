@@ -116,11 +116,7 @@ class SlabCase final : public CapturedViewCase {
     if (fragments_lost_) mv.problems.push_back("the fragment record lost fragments");
     if (capped) mv.problems.push_back(std::to_string(capped) + " insertion(s) gave up on the spinlock (lost)");
     add_output_problems(mv);
-    if (mv.check.off)
-      mv.problems.push_back(std::to_string(mv.check.off) +
-                            " channel value(s) differ from SLAB's CPU model (same masks, same insertions) by more "
-                            "than 2/255; first: " +
-                            mv.check.first_off);
+    add_model_problem(mv, "SLAB's CPU model (same masks, same insertions)", kSlabTolerance);
     conclude(mv.v, mv.problems);
     return mv.v;
   }

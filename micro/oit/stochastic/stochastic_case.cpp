@@ -144,11 +144,7 @@ class StochasticCase final : public CapturedViewCase {
     mv.v.metrics["msaa_samples"] = std::to_string(setup_.msaa_samples);
     if (coverage_lost_) mv.problems.push_back("the MSAA coverage record lost fragments");
     add_output_problems(mv);
-    if (mv.check.off)
-      mv.problems.push_back(std::to_string(mv.check.off) +
-                            " channel value(s) differ from STOCHASTIC's CPU model (same masks) by more than 2/255; "
-                            "first: " +
-                            mv.check.first_off);
+    add_model_problem(mv, "STOCHASTIC's CPU model (same masks)", kStochasticTolerance);
     conclude(mv.v, mv.problems);
     return mv.v;
   }

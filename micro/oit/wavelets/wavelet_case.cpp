@@ -124,10 +124,7 @@ class WoitCase final : public CapturedViewCase {
     // fragments behind it in that pixel moves by up to its cell's share of its absorbance: up to
     // 1% of the channels may differ; the wrong-result fault changes 12.5% of the pixels.
     const size_t allowed = mv.rgb.size() / 100;
-    if (mv.check.off > allowed)
-      mv.problems.push_back(std::to_string(mv.check.off) +
-                            " channel value(s) differ from WOIT's CPU model by more than 2/255 (" +
-                            std::to_string(allowed) + " allowed); first: " + mv.check.first_off);
+    add_model_problem(mv, "WOIT's CPU model", kWaveletTolerance, allowed);
     conclude(mv.v, mv.problems);
     return mv.v;
   }
