@@ -13,8 +13,8 @@ struct Splat {
   glm::vec3 position{0.0f};  // world space
   glm::vec3 scale{1.0f};     // standard deviations along the rotated local axes (linear: exp of the PLY's logs)
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // normalised (w, x, y, z): local axes to world
-  float opacity = 1.0f;      // in [0, 1] (the sigmoid of the PLY's logit)
-  glm::vec3 colour{1.0f};    // linear RGB for the view the list was built for (spherical harmonics evaluated)
+  float opacity = 1.0f;                        // in [0, 1] (the sigmoid of the PLY's logit)
+  glm::vec3 colour{1.0f};  // linear RGB for the view the list was built for (spherical harmonics evaluated)
 };
 
 // The splats of one view of a scene, in submission order (a global sort reorders them on the GPU).
