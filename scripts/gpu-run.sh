@@ -21,7 +21,8 @@
 # Each step's rows are in OUT/presets/STEP.csv (and STEP_raw.csv), with the preset column naming the
 # paper preset, so scripts/tables.py puts them beside the papers' tables. At the end, the time account
 # ("gpu-run.sh: time: ..."): each step's shares (timed samples, compile, warm-up, reference+validation,
-# scene, other), all steps', and what their cases leave of the script's own wall time.
+# scene, other), all steps', and what their cases leave of the script's own wall time. --smoke then
+# projects the full run's wall time on a GPU ("gpu-run.sh: projection: ..."; docs/measurement.md).
 #
 # OITBENCH=path/to/oitbench runs that binary (default: build/oitbench beside this script's folder, or
 # bin/oitbench in an unpacked bundle). Exit codes: 0 every step ran (rows may still be invalid: the
@@ -95,6 +96,25 @@ run_step() {  # NAME PRESET_NAME oitbench-run-arguments...
 echo "gpu-run.sh: --device auto: $(grep -m1 -- '--device auto ->' "$out/device.txt" || grep -m1 -- '--device' "$out/device.txt")"
 
 techniques=BASE-IS,BASE-RBS-L,BMA-IS,BMA-RBS-L,BMA-AUTO,CS-RBS-L
+steps="occupancy sort knowles2014 knowles2014-engine-grid bruell2018-approx"
+full_step() {  # STEP: its preset name and its oitbench-run arguments at GPU sizes (preset, args)
+  case "$1" in
+    occupancy) preset=gpu-run-occupancy
+      args=(occupancy --set variant=dynamic,unrolled --set size=1,2,4,8,16,24,32,33,48,64,96,128,192,256
+        --set draws=64 --resolution 800x600 --reps 5 --warmup 1) ;;
+    sort) preset=gpu-run-sort
+      args=(sort --set n=8,12,16,20,24,28,32 --set memory=local,registers --set stage=fragment
+        --resolution 800x800 --reps 5 --warmup 1) ;;
+    knowles2014) preset=knowles2014
+      args=(oit --set scene=planes,hairball --set view=fwd,rev --set technique=$techniques --set block=32
+        --resolution 1920x1080 --reps 5 --warmup 1) ;;
+    knowles2014-engine-grid) preset=knowles2014
+      args=(oit --set scene=engine-grid --set view=V1,V2,V3 --set technique=$techniques --set block=32
+        --resolution 1920x1080 --reps 5 --warmup 1) ;;
+    bruell2018-approx) preset=bruell2018-approx
+      args=(--preset bruell2018-approx --resolution 1920x1080 --reps 5 --warmup 1) ;;
+  esac
+}
 if [ $smoke -eq 1 ]; then
   run_step occupancy gpu-run-occupancy occupancy --set variant=dynamic,unrolled --set size=1,33 --set draws=4 \
     --resolution 64x48 --reps 2 --warmup 1
@@ -106,15 +126,10 @@ if [ $smoke -eq 1 ]; then
     --set technique=BASE-IS,BMA-RBS-L --set block=32 --resolution 64x64 --reps 2 --warmup 1
   run_step bruell2018-approx bruell2018-approx --preset bruell2018-approx --resolution 48x48 --reps 2 --warmup 1
 else
-  run_step occupancy gpu-run-occupancy occupancy --set variant=dynamic,unrolled \
-    --set size=1,2,4,8,16,24,32,33,48,64,96,128,192,256 --set draws=64 --resolution 800x600 --reps 5 --warmup 1
-  run_step sort gpu-run-sort sort --set n=8,12,16,20,24,28,32 --set memory=local,registers --set stage=fragment \
-    --resolution 800x800 --reps 5 --warmup 1
-  run_step knowles2014 knowles2014 oit --set scene=planes,hairball --set view=fwd,rev --set technique=$techniques \
-    --set block=32 --resolution 1920x1080 --reps 5 --warmup 1
-  run_step knowles2014-engine-grid knowles2014 oit --set scene=engine-grid --set view=V1,V2,V3 \
-    --set technique=$techniques --set block=32 --resolution 1920x1080 --reps 5 --warmup 1
-  run_step bruell2018-approx bruell2018-approx --preset bruell2018-approx --resolution 1920x1080 --reps 5 --warmup 1
+  for step in $steps; do
+    full_step "$step"
+    run_step "$step" "$preset" "${args[@]}"
+  done
 fi
 
 if [ $stopped -eq 0 ] && [ -n "$PYTHON" ] && [ -f "$here/report.py" ]; then
@@ -139,6 +154,26 @@ if [ -n "$PYTHON" ] && [ -d "$here/oitbench" ] && [ ${#csvs[@]} -gt 0 ]; then
   PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" "$PYTHON" -c 'import sys
 from oitbench import timeaccount
 print("\n".join(timeaccount.step_lines(sys.argv[2:], float(sys.argv[1]))))' "$SECONDS" "${csvs[@]}"
+fi
+# --smoke: what the full run would take on a GPU (scripts/oitbench/gpuprojection.py): its cases from
+# `oitbench run --dry-run` at GPU sizes, each case's time outside its samples as measured here, its
+# samples from the papers' GPU timings.
+if [ $smoke -eq 1 ] && [ $stopped -eq 0 ] && [ -n "$PYTHON" ] && [ -d "$here/oitbench" ] && [ ${#csvs[@]} -gt 0 ]; then
+  plans=()
+  for step in $steps; do
+    full_step "$step"
+    "$exe" run --dry-run --driver "$driver" "${args[@]}" >"$out/presets/$step.plan" 2>/dev/null &&
+      plans+=("$out/presets/$step.plan")
+  done
+  PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" "$PYTHON" -c 'import os, sys
+from oitbench import gpuprojection as gp
+plans = {}
+for path in sys.argv[2:]:
+    with open(path, encoding="utf-8") as f:
+        plans[os.path.splitext(os.path.basename(path))[0]] = gp.parse_plan(f.read())
+csvs = [os.path.join(os.path.dirname(p), n + ".csv") for n, p in zip(plans, sys.argv[2:])]
+print("\n".join(gp.projection_lines([c for c in csvs if os.path.isfile(c)], plans, sys.argv[1])))' \
+    "$here/../results/published" "${plans[@]}"
 fi
 [ $stopped -eq 1 ] && { echo "gpu-run.sh: interrupted; finished rows are in $out/presets" >&2; exit 130; }
 if [ ${#failed[@]} -gt 0 ]; then

@@ -222,6 +222,9 @@ void declare_run_grid(CLI::App& run, CliState& s) {
   run.add_option("--max-cases", o.max_cases,
                  "The most cases one run may have (default 100000), checked before anything is built")
       ->transform(number(whole(1, 100000000)));
+  run.add_flag("--dry-run", o.dry_run,
+               "Print the plan on this driver (each request's experiment, resolution, cases, reps, warm-up) and "
+               "run nothing: no CSV is written");
   run.add_option("--preset-name", o.preset_name, "Recorded in the preset column")->group("");
   run.add_option("--run-id", o.run_id, "The run's UUID (set by the parent for an isolated case)")->group("");
   run.add_flag("--isolated-child", o.isolated_child, "Set by the parent for an isolated case")->group("");

@@ -124,6 +124,7 @@ class Runner {
         opt_.timer == "gpu" || (opt_.timer == "auto" && !gl_.is_software_renderer() && gl_.has_timer_query());
     // A CPU rasterizer has no pipeline to keep full, and its queries are wrong: bracket every pass.
     sync_passes_ = opt_.sync_passes || gl_.is_software_renderer() || !use_gpu_timer_;
+    if (opt_.dry_run) return dry_run(requests);
     writer_ = std::make_unique<CsvWriter>(opt_.out, summary_columns(registry_));
     if (!opt_.raw.empty()) raw_writer_ = std::make_unique<CsvWriter>(opt_.raw, raw_columns(registry_), "--raw");
     run_columns_ = machine_columns();
@@ -594,6 +595,25 @@ class Runner {
       if (row.count("pass") && row.at("pass") == "total") add_outcome(rec.key, row);
     ++counts_[rec.status];
     ++cases_done_;
+  }
+
+  // --dry-run: the plan this driver would run (its sizes and grids), request by request on stdout, and
+  // nothing else: no CSV is opened, no case is built or run. With --shard, this shard's cases.
+  int dry_run(const std::vector<RunRequest>& requests) {
+    const std::vector<Planned> plan = make_plan(registry_, requests, opt_, !gl_.is_software_renderer());
+    size_t total = 0;
+    for (const auto& p : plan) {
+      const size_t cases = UnitStream({p}, opt_, opt_.shard).count_rows();
+      total += cases;
+      std::printf(
+          "plan: %s %dx%d cases=%zu reps=%s warmup=%d\n", p.exp->name().c_str(), p.res.width, p.res.height, cases,
+          p.policy.adaptive
+              ? ("auto (" + std::to_string(p.policy.min_reps()) + "-" + std::to_string(p.policy.max_reps) + ")").c_str()
+              : std::to_string(p.reps).c_str(),
+          p.warmup);
+    }
+    std::printf("dry run: %zu case(s) on %s; nothing was run\n", total, gl_.renderer.c_str());
+    return 0;
   }
 
   // The --expect patterns that match no case of the whole grid (every shard's), walked key by key until

@@ -62,6 +62,7 @@ struct RunOptions {
   double timeout_s = 600;            // per case, watchdog
   size_t max_cases = kMaxGridCases;  // --max-cases: the grid's bound, checked before anything is built
   bool progress = true;
+  bool dry_run = false;                     // --dry-run: print the plan (requests, sizes, case counts) and run nothing
   std::string preset_name;                  // recorded in each row
   std::string run_id;                       // the run's UUID (an isolated child's: its parent's); empty: a new one
   std::map<std::string, std::string> tags;  // --tag KEY=VALUE, in the tags column

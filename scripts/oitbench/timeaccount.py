@@ -88,3 +88,15 @@ def step_lines(paths, script_s=None, prefix="gpu-run.sh: time"):
                          f"{100.0 * everything.groups['timed samples'] / script_s:.0f}%), the rest {rest:.1f} s "
                          "(each oitbench's start and writing, info, device, the report)")
     return lines
+
+
+def accounts_of_file(path):
+    """The Account of every total row of one summary CSV (None where it cannot be read)."""
+    try:
+        _, rows = oitres.read_csv(path)
+    except oitres.ResultsError:
+        return None
+    acc = Account()
+    for r in rows:
+        acc.add(r)
+    return acc

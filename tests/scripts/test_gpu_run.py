@@ -26,6 +26,10 @@ class GpuRunSmoke(unittest.TestCase):
         self.assertIn("gpu-run.sh: done", proc.stdout)
         self.assertIn("gpu-run.sh: time: all steps: ", proc.stdout)  # the time account
         self.assertIn("gpu-run.sh: time: knowles2014: ", proc.stdout)
+        # The projection of the full run on a GPU (issue 28): every step's full-size cases from --dry-run.
+        for step in STEPS:
+            self.assertRegex(proc.stdout, rf"gpu-run.sh: projection: {step}: [1-9][0-9]* cases: outside the samples ")
+        self.assertIn("gpu-run.sh: projection: all steps: about ", proc.stdout)
         for step in STEPS:
             path = os.path.join(out, "presets", step + ".csv")
             self.assertTrue(os.path.exists(path), step)
@@ -51,6 +55,24 @@ class GpuRunSmoke(unittest.TestCase):
 
     def test_smoke_on_zink(self):
         self.smoke("zink", "zink-lavapipe")
+
+    def test_dry_run_runs_nothing(self):
+        # --dry-run prints the plan at the sizes asked and opens no CSV.
+        out = tempfile.mkdtemp(prefix="oitbench-dry-run-")
+        self.addCleanup(shutil.rmtree, out, ignore_errors=True)
+        csv_path = os.path.join(out, "never.csv")
+        proc = subprocess.run([oitbench_exe(), "run", "--dry-run", "--driver", "llvmpipe", "oit", "--set",
+                               "scene=planes,hairball", "--set", "view=fwd,rev", "--set", "technique=BASE-IS,BMA-IS",
+                               "--resolution", "1920x1080", "--reps", "5", "--out", csv_path],
+                              capture_output=True, text=True, timeout=120)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("plan: oit 1920x1080 cases=8 reps=5 warmup=1", proc.stdout)
+        self.assertIn("dry run: 8 case(s)", proc.stdout)
+        self.assertFalse(os.path.exists(csv_path))
+        from oitbench import gpuprojection
+        self.assertEqual(gpuprojection.parse_plan(proc.stdout), [("oit", "1920x1080", 8, 5, 1)])
+        self.assertEqual(gpuprojection.parse_plan("plan: oit 192x192 cases=6 reps=auto (6-30) warmup=1"),
+                         [("oit", "192x192", 6, 30, 1)])
 
     def test_bad_arguments_exit_two(self):
         proc = subprocess.run([os.path.join(SCRIPTS, "gpu-run.sh"), "--nosuch"], capture_output=True, text=True)
