@@ -1,11 +1,13 @@
-// Exclusive prefix sum, one level of micro/oit/capture/prefix_sum.cpp's scan: groups of 256 invocations,
+// Prefix sum, one level of micro/oit/capture/prefix_sum.cpp's scan: groups of 256 invocations,
 // each scanning SCAN_BLOCK = 1024 elements (4 per invocation, then a Hillis-Steele scan of the
 // invocations' sums in shared memory).
 //   SCAN_BLOCKS        scanOut[i] = the sum of the elements before i within its block, and
 //                      blockSums[group] = the block's total. The elements come from scanIn, or
 //                      (SCAN_FROM_COUNTS) from the per-pixel counts image in row-major order.
+//                      SCAN_INCLUSIVE: the sum up to and including i instead (the counts' scan,
+//                      each pixel's end, which PPPA's fill counts down from; packed_arrays.glsl).
 //   SCAN_ADD           scanOut[i] += blockSums[i / SCAN_BLOCK]: the scanned totals of the blocks
-//                      before, so scanOut becomes the exclusive scan of the whole array.
+//                      before, so scanOut becomes the scan of the whole array.
 // scanIn and scanOut may be the same buffer: an invocation reads its four elements before the
 // barrier and writes only those four after it.
 #include "../common/oitbench.glsl"
@@ -42,10 +44,13 @@ void main() {
     barrier();
   }
   uint before = partial[t] - sum;
-  if (base < count) scanOut[base] = before;
-  if (base + 1u < count) scanOut[base + 1u] = before + v0;
-  if (base + 2u < count) scanOut[base + 2u] = before + v0 + v1;
-  if (base + 3u < count) scanOut[base + 3u] = before + v0 + v1 + v2;
+#ifdef SCAN_INCLUSIVE
+  uvec4 scanned = before + uvec4(v0, v0 + v1, v0 + v1 + v2, sum);
+#else
+  uvec4 scanned = before + uvec4(0u, v0, v0 + v1, v0 + v1 + v2);
+#endif
+  for (uint k = 0u; k < 4u; ++k)
+    if (base + k < count) scanOut[base + k] = scanned[k];
   if (t == 255u) blockSums[gl_WorkGroupID.x] = partial[255];
 }
 #elif defined(SCAN_ADD)

@@ -59,8 +59,8 @@ TEST_F(OitCompute, NetworkBlockSortsMatchTheCpuReference) {
 
 // The order check: sorted lists (fwd) skip the sort, reversed ones (rev) are reversed, mixed ones
 // (the hairball) are sorted; IS, IMS and RBS-L (its blocks of 8 merged, or one block of 32 with
-// max_frags 32, networks and RS), fragment and compute resolves, PPLL and PPPA (whose lists arrive in
-// the opposite order).
+// max_frags 32, networks and RS), fragment and compute resolves, PPLL and PPPA (which holds each
+// pixel in PPLL's order, packed_arrays.glsl).
 TEST_F(OitCompute, OrderCheckedResolvesMatchTheCpuReference) {
   for (const char* technique : {"BASE-IS", "CS-IMS", "BMA-IS", "CS-RBS-L", "BASE-RBS-L", "BMA-RBS-L"})
     for (const char* capture : {"PPLL", "PPPA"})

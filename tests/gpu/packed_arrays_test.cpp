@@ -1,7 +1,8 @@
 // PPPA, the packed per-pixel arrays capture (micro/oit/capture/packed_arrays.hpp): the GPU prefix sum
 // matches a CPU one across its block levels, the capture keeps every fragment in one go (sized by
-// the scan, never re-rendered), every resolve reads it through the same storage API and matches
-// the CPU reference, and the capture checks of both layouts fail when fragments are lost.
+// the scan, never re-rendered) in the order PPLL's lists hold them, every resolve reads it through the same storage API
+// and matches the CPU reference, and the capture checks of both layouts fail when fragments are lost.
+#include <bit>
 #include <cstdlib>
 #include <numeric>
 #include <random>
@@ -9,6 +10,8 @@
 
 #include "gl/gl_objects.hpp"
 #include "oit/capture/prefix_sum.hpp"
+#include "oit/reference/visible_capture.hpp"
+#include "oit/scene/scene_passes.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {
@@ -26,6 +29,21 @@ std::map<std::string, std::string> small(std::string scene, std::string view, st
 std::vector<unsigned> exclusive_scan(const std::vector<unsigned>& v) {
   std::vector<unsigned> out(v.size());
   std::exclusive_scan(v.begin(), v.end(), out.begin(), 0u);
+  return out;
+}
+
+std::vector<unsigned> inclusive_scan(const std::vector<unsigned>& v) {
+  std::vector<unsigned> out(v.size());
+  std::inclusive_scan(v.begin(), v.end(), out.begin());
+  return out;
+}
+
+// Each pixel's fragments (colour, depth bits) in the order the capture holds them (head first).
+std::vector<std::vector<glm::uvec2>> stored_order(const oit::HostLists& l) {
+  std::vector<std::vector<glm::uvec2>> out(l.heads.size());
+  for (size_t p = 0; p < l.heads.size(); ++p)
+    for (unsigned i = l.heads[p]; i != oit::kListEnd && out[p].size() < l.nodes.size(); i = l.next[i])
+      out[p].push_back(l.nodes[i]);
   return out;
 }
 
@@ -68,7 +86,7 @@ TEST_F(PackedArrays, PrefixSumReadsTheCountsImageRowByRow) {
   std::vector<unsigned> got(counts.size());
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glGetNamedBufferSubData(out.get(), 0, static_cast<GLsizeiptr>(got.size() * 4), got.data());
-  EXPECT_EQ(got, exclusive_scan(counts));
+  EXPECT_EQ(got, inclusive_scan(counts));  // each pixel's end, which PPPA's fill counts down from
   EXPECT_EQ(scan.read_total(), std::accumulate(counts.begin(), counts.end(), 0u));
 }
 
@@ -105,6 +123,33 @@ TEST_F(PackedArrays, BothLayoutsCaptureTheSameFragments) {
     ASSERT_TRUE(a.valid && b.valid) << a.reason << " / " << b.reason;
     for (const char* m : {"total_fragments", "peak_depth", "mean_depth", "max_frags_used"})
       EXPECT_EQ(a.metrics.at(m), b.metrics.at(m)) << scene << " " << m;
+  }
+}
+
+TEST_F(PackedArrays, BothLayoutsHoldEachPixelInTheSameOrder) {
+  // PPPA fills each pixel from its end down, so it holds the fragments as PPLL's prepending lists do
+  // (the last to arrive first): planes fwd, drawn front to back, is stored far to near in both, as the
+  // sorts and the order check take it, and the CPU models' arrival_order reads the same from both.
+  for (auto [scene, view] : {std::pair{"planes", "fwd"}, {"hairball", "rev"}}) {
+    std::vector<std::vector<glm::uvec2>> order[2];
+    for (int k = 0; k < 2; ++k) {
+      ParamSet p({{"scene", scene}, {"view", view}, {"detail", "small"}, {"capture", k ? "PPPA" : "PPLL"}});
+      CaseContext ctx(shaders(), gl(), {64, 64}, "none", 1);
+      oit::ScenePasses fx(p, ctx);
+      oit::VisibleFragments seen = oit::capture_visible_fragments(fx, fx.view_projection(), p, ctx);
+      ASSERT_TRUE(seen.host.error.empty()) << seen.host.error;
+      order[k] = stored_order(seen.host);
+    }
+    size_t differ = 0, unsorted = 0;
+    for (size_t px = 0; px < order[0].size(); ++px) {
+      differ += order[0][px] != order[1][px];
+      for (size_t i = 1; i < order[1][px].size(); ++i)
+        unsorted += std::bit_cast<float>(order[1][px][i].y) > std::bit_cast<float>(order[1][px][i - 1].y);
+    }
+    EXPECT_EQ(differ, 0u) << scene << " " << view << ": pixels whose PPPA order differs from PPLL's";
+    if (std::string(view) == "fwd") {
+      EXPECT_EQ(unsorted, 0u) << "PPPA fragments nearer than the one before them";
+    }
   }
 }
 

@@ -74,20 +74,21 @@ HostLists PackedArrays::read_back() const {
   h.counts.resize(pixels);
   glGetTextureImage(counts_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(pixels * 4),
                     h.counts.data());
-  std::vector<unsigned> ends(pixels);
-  glGetNamedBufferSubData(offsets_.get(), 0, static_cast<GLsizeiptr>(pixels * 4), ends.data());
+  std::vector<unsigned> firsts(pixels);  // the fill counted each pixel's end down to its first slot
+  glGetNamedBufferSubData(offsets_.get(), 0, static_cast<GLsizeiptr>(pixels * 4), firsts.data());
   const size_t n = std::min(fragments_, pool_);
   nodes_.read(n, h);
-  // As lists: pixel p's fragments are the slots [first, first + count) of the scan.
+  // As lists: pixel p's fragments are the slots [first, first + count) of the scan, in that order
+  // (the last to arrive first, as a linked list holds them).
   h.heads.assign(pixels, kListEnd);
   h.next.assign(n, kListEnd);
   size_t first = 0, wrong = 0;
   for (size_t p = 0; p < pixels; ++p) {
     const size_t end = first + h.counts[p];
-    if (ends[p] != end) {
+    if (firsts[p] != first) {
       if (!wrong++)
         h.error = "pixel (" + std::to_string(p % width_) + "," + std::to_string(p / width_) + "): the fill stored " +
-                  std::to_string(static_cast<long long>(ends[p]) - static_cast<long long>(first)) + " of its " +
+                  std::to_string(static_cast<long long>(end) - static_cast<long long>(firsts[p])) + " of its " +
                   std::to_string(h.counts[p]) + " counted fragments";
     }
     if (end > n) {  // the counts disagree with the scan's total: keep the lists inside the pool

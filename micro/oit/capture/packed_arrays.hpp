@@ -1,8 +1,9 @@
 #pragma once
 // Packed per-pixel arrays, PPPA (Knowles 2014 section 2.2, after Peeper's linearized A-buffer;
-// shaders/capture/packed_arrays.glsl): a count pass of the geometry, an exclusive prefix sum of
+// shaders/capture/packed_arrays.glsl): a count pass of the geometry, an inclusive prefix sum of
 // the per-pixel counts (prefix_sum.hpp) whose total sizes the fragment buffer before anything is
-// stored, and a fill pass that puts each fragment in its pixel's next slot. No next pointers (a
+// stored, and a fill pass that puts each fragment in its pixel's last free slot (so each pixel
+// holds its fragments in the order its linked list would: the last to arrive first). No next pointers (a
 // fragment's 8 bytes instead of 12 in RGBA8), no global counter to contend on, never an overflow: the price
 // is the second pass of the geometry. The counts stay, so BMA needs nothing more.
 #include "oit/capture/fragment_storage.hpp"

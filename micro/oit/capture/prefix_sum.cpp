@@ -18,8 +18,8 @@ void set_count(GLuint program, size_t n) {
 
 PrefixSum::PrefixSum(const CaseContext& ctx, size_t count)
     : count_(count),
-      from_counts_(
-          ctx.build({{GL_COMPUTE_SHADER, "capture/prefix_sum.comp"}}, {{"SCAN_BLOCKS", ""}, {"SCAN_FROM_COUNTS", ""}})),
+      from_counts_(ctx.build({{GL_COMPUTE_SHADER, "capture/prefix_sum.comp"}},
+                             {{"SCAN_BLOCKS", ""}, {"SCAN_FROM_COUNTS", ""}, {"SCAN_INCLUSIVE", ""}})),
       from_buffer_(ctx.build({{GL_COMPUTE_SHADER, "capture/prefix_sum.comp"}}, {{"SCAN_BLOCKS", ""}})),
       add_(ctx.build({{GL_COMPUTE_SHADER, "capture/prefix_sum.comp"}}, {{"SCAN_ADD", ""}})) {
   GLint max_groups = 0;
