@@ -23,6 +23,7 @@
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
 #include "oit/slab/slab.hpp"
+#include "oit/splats/gpu_splats.hpp"
 #include "oit/techniques.hpp"
 #include "oit/wavelets/wavelets.hpp"
 
@@ -206,7 +207,8 @@ class OitExperiment final : public Experiment {
                                  x.frag_colour,
                                  x.frag_depth,
                                  x.block_sort,
-                                 x.order_check};
+                                 x.order_check,
+                                 splat_depth_param()};
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     for (auto& a : peel_params()) ps.push_back(std::move(a));
     for (auto& a : moment_params()) ps.push_back(std::move(a));

@@ -4,14 +4,11 @@
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "visibility.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec2 vUv;
-in float vSoft;
-in vec3 vWorld;
+#include "../scene/fragment.glsl"
 layout(location = 0) out vec4 fragColour;
 void main() {
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
-  float w = c.a * visibility(ivec2(gl_FragCoord.xy), gl_FragCoord.z);
+  SceneFragment f = scene_fragment();
+  vec4 c = scene_fragment_rgba8(f);
+  float w = c.a * visibility(ivec2(gl_FragCoord.xy), f.depth);
   fragColour = vec4(c.rgb * w, w);
 }

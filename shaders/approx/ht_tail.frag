@@ -5,17 +5,14 @@
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "nodes.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec2 vUv;
-in float vSoft;
-in vec3 vWorld;
+#include "../scene/fragment.glsl"
 layout(location = 0) out vec4 accumOut;
 layout(location = 1) out float countOut;
 void main() {
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  vec4 c = scene_fragment_rgba8(f);
   uint key = packUnorm4x8(c);
-  float z = gl_FragCoord.z;
+  float z = f.depth;
   uvec2 last = STORAGE_LOAD(ivec2(gl_FragCoord.xy), N - 1);
   float lastZ = node_depth(last);
   bool tail = lastZ != DEPTH_EMPTY && (z > lastZ || (z == lastZ && key > last.x));

@@ -24,16 +24,12 @@
 #include "../common/oitbench.glsl"
 #include "../storage/storage.glsl"
 #include "nodes.glsl"
-#include "../scene/shade.glsl"
+#include "../scene/fragment.glsl"
 #include "bindings.h"
 // The opaque effect's depth test must come before the node stores (a hidden fragment is never
 // inserted); without a depth attachment this changes nothing.
 layout(early_fragment_tests) in;
 
-in vec4 vColour;
-in vec2 vUv;
-in float vSoft;
-in vec3 vWorld;
 uniform int zero;
 #if defined(SYNC_INTERLOCK)
 layout(pixel_interlock_ordered) in;
@@ -76,9 +72,10 @@ layout(std430, binding = APPROX_STATS_BINDING) buffer ApproxStats { uint cappedU
 #endif
 
 void main() {
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  vec4 c = scene_fragment_rgba8(f);
   ivec2 p = ivec2(gl_FragCoord.xy);
-  float z = gl_FragCoord.z + oitbench_fault_hang(zero);
+  float z = f.depth + oitbench_fault_hang(zero);
   vec4 ct = vec4(c.rgb * c.a, 1.0 - c.a);  // (premultiplied colour C, transmittance T)
 #if defined(SYNC_INTERLOCK)
   beginInvocationInterlockARB();

@@ -32,12 +32,4 @@ float at_transmittance(uvec2 node) { return uintBitsToFloat(node.x ^ ONE_BITS); 
 #endif
 uvec2 at_node(float t, float z) { return uvec2(floatBitsToUint(t) ^ ONE_BITS, encode_depth(z)); }
 
-// The fragment colour exactly as the linked-list capture stores it (RGBA8), so every technique and
-// every CPU model see the same fragment.
-vec4 approx_fragment_colour(vec4 colour, vec2 uv, float soft) {
-  vec4 c = colour;
-  if (soft > 0.5) c.a *= clamp(1.0 - dot(uv, uv), 0.0, 1.0);
-  return unpackUnorm4x8(packUnorm4x8(c));
-}
-
 #endif

@@ -1,15 +1,12 @@
 // No OIT: plain "over" blending (src alpha, 1 - src alpha) in submission order onto the background.
 #include "../common/oitbench.glsl"
 #include "nodes.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec2 vUv;
-in float vSoft;
-in vec3 vWorld;
+#include "../scene/fragment.glsl"
 uniform int zero;
 layout(location = 0) out vec4 fragColour;
 void main() {
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  vec4 c = scene_fragment_rgba8(f);
 #ifdef OITBENCH_FAULT_WRONG_RESULT
   if (ivec2(gl_FragCoord.xy).x == ivec2(gl_FragCoord.xy).y) c.r = min(c.r + 0.25, 1.0);
 #endif

@@ -5,11 +5,7 @@
 // the view-space distance; WEIGHT_EQ10: Eq. 10 on the window depth gl_FragCoord.z.
 #include "../common/oitbench.glsl"
 #include "nodes.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec2 vUv;
-in float vSoft;
-in vec3 vWorld;
+#include "../scene/fragment.glsl"
 uniform vec2 nearFar;  // the projection's planes (for the view-space distance)
 layout(location = 0) out vec4 accumulation;
 layout(location = 1) out vec4 revealage;
@@ -28,8 +24,9 @@ float weight(float d, float a) {
 }
 
 void main() {
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
-  float w = c.a * weight(gl_FragCoord.z, c.a);
+  SceneFragment f = scene_fragment();
+  vec4 c = scene_fragment_rgba8(f);
+  float w = c.a * weight(f.depth, c.a);
   accumulation = vec4(c.rgb * w, w);
   revealage = vec4(c.a);
 }

@@ -6,11 +6,7 @@
 #include "moment_math.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
 #include "../scene/backdrop.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec3 vWorld;
-in vec2 vUv;
-in float vSoft;
+#include "../scene/fragment.glsl"
 uniform vec2 nearFar;
 uniform vec2 depthRange;  // the view depths the warp maps to [-1, 1]
 uniform float momentBias;
@@ -22,8 +18,9 @@ layout(binding = MOMENTS_HIGH_UNIT) uniform sampler2D highMoments;
 #endif
 layout(location = 0) out vec4 weighted;
 void main() {
-  if (opaque_hides(ivec2(gl_FragCoord.xy), gl_FragCoord.z)) discard;
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  if (opaque_hides(ivec2(gl_FragCoord.xy), f.depth)) discard;
+  vec4 c = scene_fragment_rgba8(f);
   ivec2 px = ivec2(gl_FragCoord.xy);
   float b0 = texelFetch(b0Moment, px, 0).r;
   float raw[MOMENT_COUNT];
@@ -41,7 +38,7 @@ void main() {
   raw[6] = high.z;
   raw[7] = high.w;
 #endif
-  float t = b0 > 0.0 ? moment_transmittance(b0, raw, moment_warp(gl_FragCoord.z, nearFar, depthRange), momentBias, overestimation)
+  float t = b0 > 0.0 ? moment_transmittance(b0, raw, moment_warp(f.depth, nearFar, depthRange), momentBias, overestimation)
                      : 1.0;
   weighted = vec4(c.rgb * c.a * t, c.a * t);
 }

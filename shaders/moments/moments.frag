@@ -5,11 +5,7 @@
 #include "moment_math.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
 #include "../scene/backdrop.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec3 vWorld;
-in vec2 vUv;
-in float vSoft;
+#include "../scene/fragment.glsl"
 uniform vec2 nearFar;
 uniform vec2 depthRange;  // the view depths the warp maps to [-1, 1]
 uniform int zero;
@@ -19,11 +15,12 @@ layout(location = 1) out vec4 outLow;
 layout(location = 2) out vec4 outHigh;
 #endif
 void main() {
-  if (opaque_hides(ivec2(gl_FragCoord.xy), gl_FragCoord.z)) discard;
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  if (opaque_hides(ivec2(gl_FragCoord.xy), f.depth)) discard;
+  vec4 c = scene_fragment_rgba8(f);
   float a = c.a >= 1.0 ? ABSORBANCE_MAX : min(-log(1.0 - c.a), ABSORBANCE_MAX);
   float b[MOMENT_COUNT];
-  moment_contribution(moment_warp(gl_FragCoord.z, nearFar, depthRange), a, b);
+  moment_contribution(moment_warp(f.depth, nearFar, depthRange), a, b);
   outB0 = a + oitbench_fault_hang(zero);
   outLow = vec4(b[0], b[1], b[2], b[3]);
 #if MOMENT_COUNT == 6

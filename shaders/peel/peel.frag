@@ -20,11 +20,7 @@
 // not by a depth buffer: a fragment behind the opaque surface is discarded before anything), and the
 // shading of every scene fragment (self-shadowing).
 #include "../scene/backdrop.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec2 vUv;
-in float vSoft;
-in vec3 vWorld;
+#include "../scene/fragment.glsl"
 uniform int peelPass;
 uniform int zero;
 layout(binding = PEEL_PREV_MINMAX_UNIT) uniform sampler2D prevMinMax;
@@ -53,10 +49,11 @@ bool before(float za, uint ka, float zb, uint kb) {
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  if (opaque_hides(p, gl_FragCoord.z)) discard;
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  if (opaque_hides(p, f.depth)) discard;
+  vec4 c = scene_fragment_rgba8(f);
   uint key = packUnorm4x8(c);
-  float z = gl_FragCoord.z;
+  float z = f.depth;
   vec2 prev = texelFetch(prevMinMax, p, 0).xy;
   float frontZ = -prev.x;
   uint frontKey = imageLoad(prevFront, p).x;

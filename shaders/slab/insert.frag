@@ -8,11 +8,7 @@
 #include "layers.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
 #include "../scene/backdrop.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec3 vWorld;
-in vec2 vUv;
-in float vSoft;
+#include "../scene/fragment.glsl"
 uniform uint frameSeed;
 uniform int width;
 uniform int zero;
@@ -43,11 +39,12 @@ void insert_fragment(ivec2 p, SlabLayer f) {
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  float z = clamp(gl_FragCoord.z, 0.0, 1.0) + oitbench_fault_hang(zero);
+  SceneFragment frag = scene_fragment();
+  float z = clamp(frag.depth, 0.0, 1.0) + oitbench_fault_hang(zero);
   if (opaque_hides(p, z)) return;
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  vec4 c = scene_fragment_rgba8(frag);
   uint colour = packUnorm4x8(c);
-  SlabLayer f = SlabLayer(z, slab_mask(frameSeed, uvec2(p), uint(gl_PrimitiveID), colour >> 24), colour & 0xFFFFFFu);
+  SlabLayer f = SlabLayer(z, slab_mask(frameSeed, uvec2(p), frag.primitive, colour >> 24), colour & 0xFFFFFFu);
   if (f.mask == 0u || gl_HelperInvocation) return;
   bool waiting = true;
   for (uint spins = 0u; waiting && spins < uint(SPIN_CAP); ++spins) {

@@ -5,15 +5,12 @@
 #include "../approx/nodes.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
 #include "../scene/backdrop.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec3 vWorld;
-in vec2 vUv;
-in float vSoft;
+#include "../scene/fragment.glsl"
 layout(location = 0) out vec4 accumulation;
 void main() {
-  if (opaque_hides(ivec2(gl_FragCoord.xy), gl_FragCoord.z)) discard;
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  if (opaque_hides(ivec2(gl_FragCoord.xy), f.depth)) discard;
+  vec4 c = scene_fragment_rgba8(f);
   accumulation = vec4(c.rgb * c.a, c.a);
-  gl_FragDepth = gl_FragCoord.z;
+  gl_FragDepth = f.depth;
 }

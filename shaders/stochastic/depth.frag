@@ -6,18 +6,15 @@
 #include "hash.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
 #include "../scene/backdrop.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec3 vWorld;
-in vec2 vUv;
-in float vSoft;
+#include "../scene/fragment.glsl"
 uniform uint frameSeed;
 uniform uint passIndex;
 void main() {
-  if (opaque_hides(ivec2(gl_FragCoord.xy), gl_FragCoord.z)) discard;
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  if (opaque_hides(ivec2(gl_FragCoord.xy), f.depth)) discard;
+  vec4 c = scene_fragment_rgba8(f);
   uint alpha_byte = packUnorm4x8(c) >> 24;
-  gl_SampleMask[0] = int(stochastic_mask(frameSeed, passIndex, uvec2(gl_FragCoord.xy), uint(gl_PrimitiveID), alpha_byte,
+  gl_SampleMask[0] = int(stochastic_mask(frameSeed, passIndex, uvec2(gl_FragCoord.xy), f.primitive, alpha_byte,
                                          uint(MSAA_SAMPLES)));
-  gl_FragDepth = gl_FragCoord.z;
+  gl_FragDepth = f.depth;
 }

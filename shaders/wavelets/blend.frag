@@ -6,18 +6,15 @@
 #include "wavelet_math.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
 #include "../scene/backdrop.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec3 vWorld;
-in vec2 vUv;
-in float vSoft;
+#include "../scene/fragment.glsl"
 uniform vec2 nearFar;
 uniform vec2 depthRange;  // the view depths the warp maps to [0, 1)
 layout(binding = WAVELETS_COEFFS_UNIT) uniform sampler2DArray coefficients;
 layout(location = 0) out vec4 weighted;
 void main() {
-  if (opaque_hides(ivec2(gl_FragCoord.xy), gl_FragCoord.z)) discard;
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  if (opaque_hides(ivec2(gl_FragCoord.xy), f.depth)) discard;
+  vec4 c = scene_fragment_rgba8(f);
   ivec2 px = ivec2(gl_FragCoord.xy);
   float w[WAVELET_COEFFS];
   for (int t = 0; t < WAVELET_TARGETS; ++t) {
@@ -27,6 +24,6 @@ void main() {
     w[4 * t + 2] = v.z;
     w[4 * t + 3] = v.w;
   }
-  float t = exp(-basis_absorbance(w, wavelet_warp(gl_FragCoord.z, nearFar, depthRange)));
+  float t = exp(-basis_absorbance(w, wavelet_warp(f.depth, nearFar, depthRange)));
   weighted = vec4(c.rgb * c.a * t, c.a * t);
 }

@@ -5,11 +5,7 @@
 #include "wavelet_math.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
 #include "../scene/backdrop.glsl"
-#include "../scene/shade.glsl"
-in vec4 vColour;
-in vec3 vWorld;
-in vec2 vUv;
-in float vSoft;
+#include "../scene/fragment.glsl"
 uniform vec2 nearFar;
 uniform vec2 depthRange;  // the view depths the warp maps to [0, 1)
 uniform int zero;
@@ -27,11 +23,12 @@ layout(location = 7) out vec4 coeffs7;
 #endif
 #define COEFFS_AT(i) vec4(w[4 * i], w[4 * i + 1], w[4 * i + 2], w[4 * i + 3])
 void main() {
-  if (opaque_hides(ivec2(gl_FragCoord.xy), gl_FragCoord.z)) discard;
-  vec4 c = approx_fragment_colour(shade_fragment(vColour, vWorld), vUv, vSoft);
+  SceneFragment f = scene_fragment();
+  if (opaque_hides(ivec2(gl_FragCoord.xy), f.depth)) discard;
+  vec4 c = scene_fragment_rgba8(f);
   float a = c.a >= 1.0 ? ABSORBANCE_MAX : min(-log(1.0 - c.a), ABSORBANCE_MAX);
   float w[WAVELET_COEFFS];
-  basis_contribution(wavelet_warp(gl_FragCoord.z, nearFar, depthRange), a, w);
+  basis_contribution(wavelet_warp(f.depth, nearFar, depthRange), a, w);
   coeffs0 = COEFFS_AT(0) + vec4(oitbench_fault_hang(zero));
   coeffs1 = COEFFS_AT(1);
 #if WAVELET_TARGETS > 2

@@ -28,7 +28,9 @@ void bind_vertex_layout(GLuint vao, GLuint vertices) {
   for (GLuint a = 0; a < 4; ++a) glVertexArrayAttribBinding(vao, a, 0);
 }
 
-GpuMesh::GpuMesh(const Mesh& mesh) : GpuMesh(mesh, mesh.indices, mesh.line_indices) {}
+GpuMesh::GpuMesh(const Mesh& mesh) : GpuMesh(mesh, mesh.indices, mesh.line_indices) {
+  if (!mesh.splats.empty()) splats_ = std::make_unique<GpuSplats>(mesh.splats);
+}
 
 GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& triangles) : GpuMesh(mesh, triangles, {}) {}
 
@@ -49,6 +51,10 @@ GpuMesh::GpuMesh(const Mesh& mesh, const std::vector<unsigned>& triangles, const
 }
 
 void GpuMesh::draw() const {
+  if (splats_) {
+    splats_->draw();
+    return;
+  }
   glBindVertexArray(vao_.get());
   if (triangles_ > 0) glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * triangles_), GL_UNSIGNED_INT, nullptr);
   if (segments_ > 0) draw_lines(0, segments_);

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "oit/splats/splat.hpp"
+
 namespace oitbench::oit {
 
 // A malformed or inconsistent scene file; the message starts with "file:line:column:".
@@ -54,8 +56,8 @@ struct Light {
 const std::vector<std::string>& effect_names();
 
 struct SceneObject {
-  std::string generator;  // planes | hairball | strands | smoke | model
-  std::string file;       // model: the model file, resolved against the scene's model_roots
+  std::string generator;  // planes | hairball | strands | smoke | model | splats | ply
+  std::string file;       // model, ply: the model or splat file, resolved against the scene's model_roots
   nlohmann::json params;  // the generator's parameters, "small" overrides already applied when asked
   nlohmann::json small;   // overrides for the small (quick/test) size
   std::string material;
@@ -98,10 +100,13 @@ struct Mesh {
   // Line segments (hair strands), two vertex indices each, in submission order; drawn as GL_LINES
   // after the triangles. Always captured: a strand of an opaque material has alpha 1 but stays here.
   std::vector<unsigned> line_indices;
+  // Gaussian splats (generators "splats" and "ply"), in submission order, their colours evaluated for
+  // the view the mesh was built for; always transparent, drawn by the splat rasteriser (shaders/splats/).
+  SplatList splats;
   size_t triangles() const { return (indices.size() + opaque_indices.size()) / 3; }
   size_t segments() const { return line_indices.size() / 2; }
-  // Primitives: triangles plus line segments (what the `polygons` metric counts).
-  size_t polygons() const { return triangles() + segments(); }
+  // Primitives: triangles plus line segments plus splats (what the `polygons` metric counts).
+  size_t polygons() const { return triangles() + segments() + splats.size(); }
 };
 
 // Generates every object for `view` (billboards face its eye) and orders the primitives (a triangle

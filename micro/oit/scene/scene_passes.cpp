@@ -114,6 +114,7 @@ ScenePasses::ScenePasses(const ParamSet& p, CaseContext& ctx)
   const Detail detail = p.get("detail") == "small" ? Detail::Small : Detail::Full;
   // Built once per run for every case of this scene, view and effects (core/shared_cache.hpp).
   geometry_ = scene_geometry(ctx, scene_, view_, detail, opaque, has("transparency"));
+  check_splats(p);
   // Every primitive casts its shadow, whatever else runs; built once now for the first capture.
   if (has("self-shadowing")) {
     shadow_ = make_self_shadowing(ctx, scene_, geometry_->full ? geometry_->full->mesh : geometry_->mesh, p);
@@ -122,8 +123,8 @@ ScenePasses::ScenePasses(const ParamSet& p, CaseContext& ctx)
   view_proj_ = oit::view_projection(view_, geometry_->mesh, static_cast<float>(width_) / height_);
   if (opaque) {
     opaque_ = std::make_unique<Opaque>();
-    opaque_->program = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "scene/opaque.frag"}},
-                                 geometry_defines());
+    opaque_->program =
+        ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "scene/opaque.frag"}}, mesh_defines());
     opaque_->fbo = gl::make_framebuffer();
     opaque_->colour = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(opaque_->colour.get(), 1, GL_RGBA32F, width_, height_);
@@ -185,14 +186,36 @@ void ScenePasses::bind_backdrop(GLuint program) const {
   glBindTextureUnit(OIT_BACKDROP_UNIT, opaque_->colour.get());
 }
 
-Defines ScenePasses::geometry_defines() const {
+Defines ScenePasses::mesh_defines() const {
   Defines d = shading_defines(shadow_);
   for (auto& x : defines()) d.push_back(x);
   return d;
 }
 
+Defines ScenePasses::geometry_defines() const {
+  Defines d = mesh_defines();
+  if (splats()) {
+    for (auto& x : splat_defines(splat_depth_)) d.push_back(x);
+  }
+  return d;
+}
+
 void ScenePasses::bind_geometry(GLuint program) const {
   if (shadow_) shadow_->bind(program);
+  if (splats()) bind_splat_viewport(program, width_, height_);
+}
+
+// Splats are drawn by their own vertex stage (shaders/splats/): a scene draws either splats or
+// transparent triangles and segments, and its splats cast no shadow (the map draws triangles).
+void ScenePasses::check_splats(const ParamSet& p) {
+  if (!splats()) return;
+  splat_depth_ = p.has("splat_depth") ? p.get("splat_depth") : "ray-max";
+  const Mesh& m = geometry_->mesh;
+  if (!m.indices.empty() || !m.line_indices.empty())
+    throw Unsupported("scene '" + scene_.name + "' (" + scene_.path +
+                      ") mixes splats with transparent triangles or segments: the splat rasteriser draws splats only");
+  if (has("self-shadowing"))
+    throw Unsupported("scene '" + scene_.name + "': splats cast no shadow (the shadow map draws triangles)");
 }
 
 ShadowCheck ScenePasses::validate_shadow() { return shadow_ ? shadow_->validate() : ShadowCheck{}; }
@@ -200,6 +223,7 @@ ShadowCheck ScenePasses::validate_shadow() { return shadow_ ? shadow_->validate(
 std::map<std::string, std::string> ScenePasses::resolved_params() const {
   std::map<std::string, std::string> r = {{"effects", join_effects(effects_)}};
   if (!shadow_) r["shadow_slices"] = r["shadow_resolution"] = "";
+  if (!splats()) r["splat_depth"] = "";
   return r;
 }
 

@@ -74,12 +74,15 @@ class ScenePasses {
 
   // For every technique's shaders (shaders/scene/backdrop.glsl): OPAQUE_BACKDROP with the opaque effect.
   Defines defines() const;
-  // For the programs that shade scene fragments (shaders/scene/shade.glsl): SELF_SHADOWING with
-  // the self-shadowing effect, plus defines().
+  // For the programs that draw the transparent primitives (shaders/scene/scene.vert, fragment.glsl):
+  // SELF_SHADOWING with the self-shadowing effect, plus defines(); a scene of splats adds
+  // splat_defines() (SPLATS, and the splat_depth key).
   Defines geometry_defines() const;
   // Before a geometry pass: the shadow map and its lookup's uniforms for `program` (a program
-  // built with geometry_defines()); no-op without the effect.
+  // built with geometry_defines()), and the splat rasteriser's viewport.
   void bind_geometry(GLuint program) const;
+  // The scene's splats on the GPU (null without any); transparent().draw() draws them.
+  const GpuSplats* splats() const { return geometry_->transparent->splats(); }
   // The self-shadowing checks and shadow_* metrics (micro/oit/scene/shadow_map.hpp); empty without it.
   ShadowCheck validate_shadow();
   bool self_shadowing() const { return shadow_ != nullptr; }
@@ -114,6 +117,9 @@ class ScenePasses {
   std::shared_ptr<const SceneGeometry> geometry_;
   glm::mat4 view_proj_{1.0f};
   int width_, height_;
+  std::string splat_depth_;      // splat scenes: the splat_depth parameter
+  Defines mesh_defines() const;  // geometry_defines() for the mesh path (the opaque pass)
+  void check_splats(const ParamSet& p);
   bool skip_depth_test_;  // fault=no-opaque-depth
 
   struct Opaque {
