@@ -131,16 +131,24 @@ TEST_F(OitCompute, BmaAutoCalibratesOnceThenReadsTheCache) {
 }
 
 TEST_F(OitCompute, BmaAutoFollowsAForcedCacheEntry) {
-  // A cache naming RBS-L for every interval: BMA-AUTO must run exactly that (and stay valid).
+  // A cache naming one sort for every interval: BMA-AUTO must run exactly that (and stay valid);
+  // RBS-L with the network and the order check is a candidate the calibration times, too.
   auto first = run_case("oit", small("planes", "rev", "BMA-AUTO"));
   ASSERT_TRUE(first.valid) << first.reason;
+  EXPECT_NE(first.metrics.at("bma_auto_timings").find("RBS-L/bitonic+order-check="), std::string::npos)
+      << first.metrics.at("bma_auto_timings");
   auto path = cache_ / "oitbench" / "bma_auto.json";
-  auto cache = nlohmann::json::parse(std::ifstream(path));
-  for (auto& [key, entry] : cache.items()) entry["sort"] = "RBS-L";
-  std::ofstream(path) << cache.dump();
-  auto v = run_case("oit", small("planes", "rev", "BMA-AUTO"));
-  EXPECT_TRUE(v.valid) << v.reason;
-  EXPECT_EQ(v.metrics.at("bma_auto_choice"), "32:RBS-L");  // 24 planes: one interval, 17-32
+  for (const char* sort : {"RBS-L", "RBS-L/bitonic+order-check"}) {
+    auto cache = nlohmann::json::parse(std::ifstream(path));
+    for (auto& [key, entry] : cache.items()) {
+      EXPECT_NE(key.find("candidates 3"), std::string::npos) << key;
+      entry["sort"] = sort;
+    }
+    std::ofstream(path) << cache.dump();
+    auto v = run_case("oit", small("planes", "rev", "BMA-AUTO"));
+    EXPECT_TRUE(v.valid) << sort << ": " << v.reason;
+    EXPECT_EQ(v.metrics.at("bma_auto_choice"), std::string("32:") + sort);  // 24 planes: one interval, 17-32
+  }
 }
 
 TEST_F(OitCompute, BmaAutoKeysTheCacheOnTheListOrder) {

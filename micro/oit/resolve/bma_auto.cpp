@@ -32,7 +32,7 @@ SortChoiceCache::SortChoiceCache(std::string path) : path_(std::move(path)), ent
 
 std::string SortChoiceCache::key(const GlInfo& gl, unsigned interval_top, unsigned block, const std::string& order) {
   return gl.renderer + " | " + gl.version + " | interval " + std::to_string(interval_top) + " | block " +
-         std::to_string(block) + " | " + order + " | candidates 2";  // 2: with the networks and the order check
+         std::to_string(block) + " | " + order + " | candidates 3";  // 3: with RBS-L/bitonic+order-check
 }
 
 std::vector<std::string> interval_orders(const HostLists& lists, const ListStats& stats,
@@ -105,6 +105,9 @@ std::vector<SortChoice> bma_auto_candidates(unsigned interval_top) {
   }
   for (BlockSort b : {BlockSort::Insertion, BlockSort::Bitonic, BlockSort::OddEvenMerge})
     c.push_back({ResolveSort::RBS_L, b});
+  // The network with the order check: a sorted list skips the network and the merge, a reversed one
+  // is reversed in O(n) (unchecked, the networks sort sorted input all the same).
+  c.push_back({ResolveSort::RBS_L, BlockSort::Bitonic, true});
   return c;
 }
 

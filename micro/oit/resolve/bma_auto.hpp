@@ -45,7 +45,7 @@ struct CandidateResult {
 
 // The candidates for an interval whose deepest pixel has `interval_top` fragments: IS, and IS with
 // the order check; IMS (with and without it) above 32; RBS-L with each block sort (RS and the two
-// register networks).
+// register networks), and RBS-L with the bitonic network and the order check.
 std::vector<SortChoice> bma_auto_candidates(unsigned interval_top);
 
 struct BmaAutoChoice {
