@@ -6,7 +6,7 @@
 #
 #   tests/fuzz/run.sh                        # each harness 15 s (the CI smoke: about a minute in all)
 #   tests/fuzz/run.sh --seconds 600          # the long run (10 minutes each)
-#   tests/fuzz/run.sh --seconds 60 scene     # one harness: scene, preset, set_option, csv
+#   tests/fuzz/run.sh --seconds 60 scene     # one harness: scene, splat_ply, preset, set_option, csv
 #   tests/fuzz/run.sh --check                # exit 0 when clang can build fuzzers here, 77 when not
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -23,11 +23,11 @@ while [[ $# -gt 0 ]]; do
     --glad) glad="$2"; shift 2 ;;
     --check) check_only=1; shift ;;
     -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
-    scene|preset|set_option|csv) harnesses+=("$1"); shift ;;
+    scene|splat_ply|preset|set_option|csv) harnesses+=("$1"); shift ;;
     *) echo "run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-[[ ${#harnesses[@]} -gt 0 ]] || harnesses=(scene preset set_option csv)
+[[ ${#harnesses[@]} -gt 0 ]] || harnesses=(scene splat_ply preset set_option csv)
 
 cxx=""
 for c in clang++-14 clang++; do
@@ -70,11 +70,12 @@ object() {
 declare -A sources=(
   [set_option]="micro/core/params.cpp micro/core/grid.cpp"
   [preset]="micro/core/presets.cpp micro/core/params.cpp micro/core/grid.cpp micro/core/text_position.cpp micro/core/files.cpp micro/core/data_dirs.cpp"
-  [scene]="micro/oit/scene/scene.cpp micro/core/text_position.cpp micro/core/files.cpp micro/core/data_dirs.cpp"
+  [scene]="micro/oit/scene/scene.cpp micro/oit/splats/splat_scene.cpp micro/oit/splats/splat_ply.cpp micro/core/text_position.cpp micro/core/files.cpp micro/core/data_dirs.cpp"
+  [splat_ply]="micro/oit/splats/splat_ply.cpp"
   [csv]="micro/core/csv.cpp micro/core/files.cpp"
 )
 declare -A libs=([scene]="-lassimp")
-declare -A max_len=([scene]=65536 [preset]=16384 [set_option]=512 [csv]=16384)
+declare -A max_len=([scene]=65536 [splat_ply]=65536 [preset]=16384 [set_option]=512 [csv]=16384)
 
 status=0
 for h in "${harnesses[@]}"; do

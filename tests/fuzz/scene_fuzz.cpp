@@ -1,7 +1,8 @@
 // libFuzzer harness: the scene parser, then the mesh of the first view under a small cap (the size
 // estimate must refuse what would pass it before building). Any text must give a mesh or a
-// SceneError, never another exception, a crash, a hang or unbounded memory. Scenes with a model
-// object are parsed but not built (their files are on disk; the unit tests cover them).
+// SceneError, never another exception, a crash, a hang or unbounded memory. Scenes with a model or a
+// ply object are parsed but not built (their files are on disk; the unit tests and the splat_ply
+// harness cover them).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -18,12 +19,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     SceneDesc s = parse_scene("fuzz.json", text);
     bool model = false;
-    for (const auto& o : s.objects) model = model || o.generator == "model";
+    for (const auto& o : s.objects) model = model || o.generator == "model" || o.generator == "ply";
     if (model || s.views.empty()) return 0;
     for (Detail d : {Detail::Small, Detail::Full}) {
       Mesh m = build_mesh(s, s.views.front(), d, true, kFuzzMeshBytes);
       // The estimate bounds what was built (vertices are the bulk of it).
-      if (m.vertices.size() * sizeof(Vertex) > kFuzzMeshBytes) __builtin_trap();
+      if (m.vertices.size() * sizeof(Vertex) + m.splats.size() * sizeof(Splat) > kFuzzMeshBytes) __builtin_trap();
     }
   } catch (const SceneError&) {
   }

@@ -16,6 +16,9 @@
 #include "core/files.hpp"
 #include "core/text_position.hpp"
 #include "oit/case_support.hpp"
+#include "oit/scene/generator_support.hpp"
+#include "oit/splats/splat_ply.hpp"
+#include "oit/splats/splat_scene.hpp"
 
 namespace oitbench::oit {
 
@@ -103,11 +106,12 @@ class Node {
   std::vector<std::string> keys_;
 };
 
-const std::vector<std::string> kGenerators = {"planes", "hairball", "strands", "smoke", "model"};
+const std::vector<std::string> kGenerators = {"planes", "hairball", "strands", "smoke", "model", "splats", "ply"};
 // Generator parameters that are counts (whole numbers), and sizes that must be above 0.
-const std::set<std::string> kCountKeys = {"count", "strands", "segments", "sides", "per_strand", "seed", "grid"};
-const std::set<std::string> kPositiveKeys = {"half_size", "segment_length", "tube_radius",
-                                             "radius",    "head_radius",    "size"};
+const std::set<std::string> kCountKeys = {"count",      "strands", "segments", "sides",
+                                          "per_strand", "seed",    "grid",     "clusters"};
+const std::set<std::string> kPositiveKeys = {"half_size",   "segment_length", "tube_radius", "radius",
+                                             "head_radius", "size",           "scale_min",   "scale_max"};
 
 SubmitOrder parse_order(const Node& n) {
   auto s = n.str();
@@ -152,36 +156,6 @@ struct Builder {
     mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
   }
 };
-
-// Deterministic generator (the scene must not depend on the standard library's distributions).
-struct Rng {
-  unsigned long long s;
-  explicit Rng(unsigned long long seed) : s(seed * 6364136223846793005ULL + 1442695040888963407ULL) {}
-  double uniform() {  // [0, 1)
-    s ^= s >> 12;
-    s ^= s << 25;
-    s ^= s >> 27;
-    return static_cast<double>((s * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
-  }
-  double range(double a, double b) { return a + (b - a) * uniform(); }
-  glm::vec3 unit() {
-    for (;;) {
-      glm::vec3 v(range(-1, 1), range(-1, 1), range(-1, 1));
-      float l = glm::length(v);
-      if (l > 0.05f && l <= 1.0f) return v / l;
-    }
-  }
-  double normal() {
-    double u = std::max(uniform(), 1e-12), v = uniform();
-    return std::sqrt(-2.0 * std::log(u)) * std::cos(6.283185307179586 * v);
-  }
-};
-
-glm::vec3 hue(double h) {
-  h = h - std::floor(h);
-  glm::vec3 c(std::abs(h * 6 - 3) - 1, 2 - std::abs(h * 6 - 2), 2 - std::abs(h * 6 - 4));
-  return glm::clamp(c, 0.0f, 1.0f);
-}
 
 double param(const json& p, const char* key, double fallback) {
   return p.contains(key) ? p[key].get<double>() : fallback;
@@ -340,10 +314,13 @@ void gen_smoke(Builder& b, const json& p, const Material& m, const View& view) {
 // What a mesh will hold, counted before it is built: build_mesh refuses one past kMaxMeshBytes
 // instead of allocating until the process is killed.
 struct MeshEstimate {
-  double vertices = 0, indices = 0, primitives = 0;
+  double vertices = 0, indices = 0, primitives = 0, splats = 0;
   // The builder's vertices, its indices and their reordered copy, and per primitive its group,
-  // centroid and flags.
-  double bytes() const { return vertices * sizeof(Vertex) + indices * 2 * sizeof(unsigned) + primitives * 40; }
+  // centroid and flags; per splat the list, its reordered copy, its distance and its place in the order.
+  double bytes() const {
+    return vertices * sizeof(Vertex) + indices * 2 * sizeof(unsigned) + primitives * 40 +
+           splats * (2 * sizeof(Splat) + sizeof(float) + sizeof(size_t));
+  }
 };
 
 std::string approx_count(double x) {
@@ -359,9 +336,10 @@ void check_mesh_size(const MeshEstimate& total, const SceneDesc& scene, size_t o
   const double index_limit = 4294967295.0;  // indices are 32-bit
   if (total.bytes() <= static_cast<double>(max_bytes) && total.vertices < index_limit) return;
   throw SceneError(scene.path + ": /objects/" + std::to_string(object) + " (" + scene.objects[object].generator +
-                   "): " + why + " makes the mesh about " + approx_count(total.primitives) + " primitives, " +
-                   approx_count(total.vertices) + " vertices, " + approx_count(total.bytes() / (1 << 30)) +
-                   " GiB; the most oitbench builds is " + approx_count(static_cast<double>(max_bytes) / (1 << 30)) +
+                   "): " + why + " makes the mesh about " + approx_count(total.primitives) + " primitives (" +
+                   approx_count(total.splats) + " splats), " + approx_count(total.vertices) + " vertices, " +
+                   approx_count(total.bytes() / (1 << 30)) + " GiB; the most oitbench builds is " +
+                   approx_count(static_cast<double>(max_bytes) / (1 << 30)) +
                    " GiB and 2^32 vertices: lower the parameters (or use \"detail\": small)");
 }
 
@@ -383,6 +361,10 @@ MeshEstimate estimate_object(const SceneObject& o, const json& p, std::string& w
     e = sides > 0 ? MeshEstimate{segments * 2 * sides, segments * 6 * sides, segments}
                   : MeshEstimate{2 * segments + 1, 2 * segments, segments};
     why = "segments " + approx_count(segments) + (sides > 0 ? " x sides " + approx_count(sides) : "");
+  } else if (o.generator == "splats") {
+    const double count = splat_generator_params(p).count;
+    e = {0, 0, count, count};
+    why = "count " + approx_count(count);
   }
   return e;
 }
@@ -532,10 +514,73 @@ std::string resolve_model(const SceneDesc& s, const std::string& file) {
                    " (set OITBENCH_MODELS, or install Debian's assimp-testmodels)");
 }
 
+[[noreturn]] void splat_file_error(const SceneDesc& scene, size_t object, const SplatFileError& e) {
+  throw SceneError(scene.path + ": /objects/" + std::to_string(object) + "/file: " + e.what());
+}
+
+// A "ply" object's size from its file's header (the first `count` splats when its params say so),
+// before anything is read for them.
+MeshEstimate estimate_ply(const SceneDesc& scene, size_t object, const json& p, std::string& why) {
+  const std::string file = resolve_model(scene, scene.objects[object].file);
+  SplatPlyHeader h;
+  try {
+    h = read_splat_ply_header(file);
+  } catch (const SplatFileError& e) {
+    splat_file_error(scene, object, e);
+  }
+  const double n = std::min(static_cast<double>(h.count), param(p, "count", 1e300));
+  why = file + " (" + approx_count(static_cast<double>(h.count)) + " splats)" +
+        (p.contains("count") ? ", count " + approx_count(param(p, "count", 0)) : "");
+  return {0, 0, n, n};
+}
+
+// A "ply" object's splats for the view (their spherical harmonics seen from its eye), moved by `offset`.
+SplatList gen_ply(const SceneDesc& scene, size_t object, const json& p, const View& view) {
+  const std::string file = resolve_model(scene, scene.objects[object].file);
+  glm::vec3 offset(0.0f);
+  if (p.contains("offset"))
+    for (int k = 0; k < 3; ++k) offset[k] = p["offset"][k].get<float>();
+  const std::uint64_t count = p.contains("count") ? p["count"].get<std::uint64_t>() : UINT64_MAX;
+  try {
+    return read_splat_ply(file, view.eye, count, offset);
+  } catch (const SplatFileError& e) {
+    splat_file_error(scene, object, e);
+  }
+}
+
+void append_splats(SplatList& to, SplatList&& from) {
+  if (to.empty())
+    to = std::move(from);
+  else
+    to.insert(to.end(), from.begin(), from.end());
+}
+
+// "splats": its parameters taken together (params with small applied, and params alone).
+void check_splat_params(Node& o, const SceneObject& obj) {
+  if (obj.generator != "splats") return;
+  for (const json* ps : {&obj.params, &obj.small}) {
+    if (!ps->is_object()) continue;
+    json merged = obj.params;
+    for (const auto& [k, v] : ps->items()) merged[k] = v;
+    auto problem = splat_params_problem(merged);
+    if (!problem) continue;
+    Node where = o.child(ps == &obj.params ? "params" : "small");
+    if (where.has(problem->first)) where.child(problem->first).fail(problem->second);
+    where.fail(problem->second + " (with the defaults of the keys not given)");
+  }
+}
+
 // Every model file of the scene found and a regular file of bounded size: a folder or /dev/null is bad
 // input (exit 2) before any case runs, not an error row.
 void check_model_files_of(const SceneDesc& scene) {
   for (size_t i = 0; i < scene.objects.size(); ++i) {
+    if (scene.objects[i].generator == "ply") {
+      try {
+        check_splat_ply(resolve_model(scene, scene.objects[i].file));
+      } catch (const SplatFileError& e) {
+        splat_file_error(scene, i, e);
+      }
+    }
     if (scene.objects[i].generator != "model") continue;
     try {
       check_input_file(resolve_model(scene, scene.objects[i].file), "model file", kMaxModelFileBytes);
@@ -575,7 +620,7 @@ void parse_light_and_effects(const Node& root, SceneDesc& s) {
   bool any_opaque = false, any_transparent = false;
   for (const auto& o : s.objects) {
     const auto& m = s.material(o.material);
-    if (o.generator == "strands") {  // line segments are always captured (Mesh::line_indices)
+    if (o.generator == "strands" || o.generator == "splats" || o.generator == "ply") {  // always captured
       any_transparent = true;
       continue;
     }
@@ -643,6 +688,12 @@ void check_object_param(Node& pn, const std::string& pk, const json& pv, const S
     v.vec3(pk == "grid" ? 1 : 0, 1e4);
     if (pk == "grid")
       for (size_t e = 0; e < 3; ++e) v.element(e).integer(1, 1e4);
+  } else if (pk == "opacity_min" || pk == "opacity_max") {
+    v.number(0, 1);
+  } else if (pk == "anisotropy") {
+    v.number(1, 1e4);
+  } else if (pk == "opacity_shape") {
+    if (v.number(0, 1e3) == 0) v.fail("expected an exponent above 0");
   } else if (pk == "lowest_root") {
     v.number(-1, 0.9);                // roots are drawn until one lies above it: near 1 none ever does
   } else if (kCountKeys.count(pk)) {  // counts: whole numbers, never truncated
@@ -678,13 +729,17 @@ void check_plane_lists(Node& o, const SceneObject& obj) {
 SceneObject parse_object(Node o, const SceneDesc& s) {
   o.expect_object({"generator", "material", "params", "small", "file"});
   SceneObject obj;
-  if (!o.has("generator")) o.fail("expected \"generator\": one of planes, hairball, strands, smoke, model");
+  if (!o.has("generator"))
+    o.fail("expected \"generator\": one of planes, hairball, strands, smoke, model, splats, ply");
   obj.generator = o.child("generator").str();
   if (std::find(kGenerators.begin(), kGenerators.end(), obj.generator) == kGenerators.end())
     o.child("generator")
-        .fail("unknown generator \"" + obj.generator + "\"; expected planes, hairball, strands, smoke or model");
-  if (obj.generator == "model") {
-    if (!o.has("file")) o.fail("expected \"file\": the model file (searched in model_roots)");
+        .fail("unknown generator \"" + obj.generator +
+              "\"; expected planes, hairball, strands, smoke, model, splats or ply");
+  if (obj.generator == "model" || obj.generator == "ply") {
+    if (!o.has("file"))
+      o.fail(obj.generator == "model" ? "expected \"file\": the model file (searched in model_roots)"
+                                      : "expected \"file\": the 3DGS PLY file (searched like model files)");
     obj.file = o.child("file").str();
   }
   if (!o.has("material")) o.fail("expected \"material\": the name of one of the scene's materials");
@@ -723,12 +778,20 @@ SceneObject parse_object(Node o, const SceneDesc& s) {
                       "exclude_materials",
                       "offset",
                       "colours",
-                      "alphas"});
+                      "alphas",
+                      "clusters",
+                      "scale_min",
+                      "scale_max",
+                      "anisotropy",
+                      "opacity_min",
+                      "opacity_max",
+                      "opacity_shape"});
     for (const auto& [pk, pv] : pn.raw().items()) check_object_param(pn, pk, pv, obj);
     (std::string(key) == "params" ? obj.params : obj.small) = pn.raw();
   }
   if (obj.params.is_null()) obj.params = json::object();
   check_plane_lists(o, obj);
+  check_splat_params(o, obj);
   return obj;
 }
 
@@ -865,8 +928,10 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
   MeshEstimate total;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     std::string why;
-    MeshEstimate e = estimate_object(scene.objects[i], params[i], why);
-    total = {total.vertices + e.vertices, total.indices + e.indices, total.primitives + e.primitives};
+    MeshEstimate e = scene.objects[i].generator == "ply" ? estimate_ply(scene, i, params[i], why)
+                                                         : estimate_object(scene.objects[i], params[i], why);
+    total = {total.vertices + e.vertices, total.indices + e.indices, total.primitives + e.primitives,
+             total.splats + e.splats};
     check_mesh_size(total, scene, i, why, max_bytes);
   }
   Builder b;
@@ -883,9 +948,14 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
       gen_strands(b, p, m);
     else if (o.generator == "model")
       gen_model(b, p, m, resolve_model(scene, o.file), scene, i, total, max_bytes);
+    else if (o.generator == "splats")
+      append_splats(b.mesh.splats, generate_splats(splat_generator_params(p), m));
+    else if (o.generator == "ply")
+      append_splats(b.mesh.splats, gen_ply(scene, i, p, view));
     else
       gen_smoke(b, p, m, view);
   }
+  order_splats(b.mesh.splats, view);
   // Reorder whole primitives by their centroid's distance to the eye (stable: ties keep generation order).
   std::vector<size_t> order(b.groups.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -936,6 +1006,11 @@ glm::vec2 near_far(const View& view, const Mesh& mesh) {
   for (const auto& v : mesh.vertices) {
     lo = glm::min(lo, v.position);
     hi = glm::max(hi, v.position);
+  }
+  for (const auto& s : mesh.splats) {  // a splat reaches 3 standard deviations (what the rasteriser draws)
+    const float r = 3.0f * std::max({s.scale.x, s.scale.y, s.scale.z});
+    lo = glm::min(lo, s.position - r);
+    hi = glm::max(hi, s.position + r);
   }
   glm::vec3 centre = (lo + hi) * 0.5f;
   float radius = glm::length(hi - lo) * 0.5f;
