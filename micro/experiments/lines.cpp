@@ -22,6 +22,7 @@
 #include "oit/reference/reference.hpp"
 #include "oit/resolve/resolve_sort.hpp"
 #include "oit/scene/gpu_mesh.hpp"
+#include "oit/scene/radix_sort.hpp"
 #include "oit/scene/scene.hpp"
 #include "shaders/lines/bindings.h"
 
@@ -112,19 +113,12 @@ class LinesCase final : public CaseInstance {
                               &view_proj_[0][0]);
     glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "nearDistance"), near_distance);
     glProgramUniform1f(keys_prog_.get(), glGetUniformLocation(keys_prog_.get(), "farDistance"), far_distance);
-    for (const char* phase : {"PHASE_LOCAL", "PHASE_BLOCKS", "PHASE_SCATTER"})
-      split_.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
     emit_ = ctx.build({{GL_COMPUTE_SHADER, "lines/emit_indices.comp"}}, {});
     blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "lines/blend.frag"}}, {});
     glProgramUniformMatrix4fv(blend_.get(), glGetUniformLocation(blend_.get(), "viewProj"), 1, GL_FALSE,
                               &view_proj_[0][0]);
+    sort_ = std::make_unique<RadixSort>(ctx, segments_, bits_);
     const GLsizeiptr n = static_cast<GLsizeiptr>(segments_ * sizeof(unsigned));
-    for (auto* b : {&keys0_, &index0_, &keys_[0], &keys_[1], &index_[0], &index_[1], &local_}) {
-      *b = gl::make_buffer();
-      glNamedBufferStorage(b->get(), n, nullptr, 0);
-    }
-    blocks_ = gl::make_buffer();
-    glNamedBufferStorage(blocks_.get(), static_cast<GLsizeiptr>((segments_ / 256 + 2) * sizeof(unsigned)), nullptr, 0);
     elements_ = gl::make_buffer();
     glNamedBufferStorage(elements_.get(), 2 * n, nullptr, 0);
   }
@@ -152,8 +146,8 @@ class LinesCase final : public CaseInstance {
     {
       auto t = timer.pass("keys");
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_VERTICES_BINDING, mesh_->vertex_buffer());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_KEYS_BINDING, keys0_.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_INDICES_BINDING, index0_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_KEYS_BINDING, sort_->keys_in().get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_INDICES_BINDING, sort_->indices_in().get());
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_PRIMITIVES_BINDING, mesh_->line_index_buffer());
       glUseProgram(keys_prog_.get());
       glUniform1ui(glGetUniformLocation(keys_prog_.get(), "segments"), count);
@@ -162,23 +156,7 @@ class LinesCase final : public CaseInstance {
     }
     {
       auto t = timer.pass("sort");
-      for (int bit = 0; bit < bits_; ++bit) {
-        const gl::Buffer& kin = bit == 0 ? keys0_ : keys_[(bit + 1) % 2];
-        const gl::Buffer& iin = bit == 0 ? index0_ : index_[(bit + 1) % 2];
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_KEYS_IN_BINDING, kin.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_INDICES_IN_BINDING, iin.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_KEYS_OUT_BINDING, keys_[bit % 2].get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_INDICES_OUT_BINDING, index_[bit % 2].get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_LOCAL_BINDING, local_.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_BLOCKS_BINDING, blocks_.get());
-        for (size_t phase = 0; phase < split_.size(); ++phase) {
-          glUseProgram(split_[phase].get());
-          glUniform1ui(glGetUniformLocation(split_[phase].get(), "count"), count);
-          glUniform1ui(glGetUniformLocation(split_[phase].get(), "bit"), static_cast<GLuint>(bit));
-          glDispatchCompute(phase == 1 ? 1 : groups, 1, 1);
-          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        }
-      }
+      sort_->sort();  // micro/oit/scene/radix_sort.hpp: the one primitive sort
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_SORTED_BINDING, sorted_index().get());
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_ELEMENTS_BINDING, elements_.get());
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_PRIMITIVES_BINDING, mesh_->line_index_buffer());
@@ -231,7 +209,8 @@ class LinesCase final : public CaseInstance {
     }
     // The sort: the GPU's own keys, sorted stably on the CPU, must give exactly the GPU's order.
     std::vector<unsigned> keys(segments_), order(segments_), gpu(segments_);
-    glGetNamedBufferSubData(keys0_.get(), 0, static_cast<GLsizeiptr>(segments_ * sizeof(unsigned)), keys.data());
+    glGetNamedBufferSubData(sort_->keys_in().get(), 0, static_cast<GLsizeiptr>(segments_ * sizeof(unsigned)),
+                            keys.data());
     glGetNamedBufferSubData(sorted_index().get(), 0, static_cast<GLsizeiptr>(segments_ * sizeof(unsigned)), gpu.data());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return keys[a] < keys[b]; });
@@ -249,7 +228,7 @@ class LinesCase final : public CaseInstance {
   }
 
  private:
-  const gl::Buffer& sorted_index() const { return index_[(bits_ - 1) % 2]; }
+  const gl::Buffer& sorted_index() const { return sort_->sorted_indices(); }
 
   void capture() {
     target_.bind();
@@ -271,9 +250,9 @@ class LinesCase final : public CaseInstance {
   FragmentLists lists_;
   ListStats stats_;
   std::vector<double> reference_;
-  gl::Buffer keys0_, index0_, keys_[2], index_[2], local_, blocks_, elements_;
+  std::unique_ptr<RadixSort> sort_;  // the segments' (slice key, index) pairs
+  gl::Buffer elements_;
   gl::Program capture_, resolve_, keys_prog_, emit_, blend_;
-  std::vector<gl::Program> split_;
 };
 
 class LinesExperiment final : public Experiment {

@@ -102,6 +102,7 @@ std::vector<Technique> build_table() {
             make_woit_case),
       other("STOCHASTIC", F::Stochastic, 0, kFlicker + Params{"samples_per_pixel"}, make_stochastic_case),
       other("SLAB", F::Stochastic, 1, kFlicker + Params{"samples_per_pixel", "slab_layers"}, make_slab_case),
+      approx("GLOBAL-SORT", A::GlobalSort, kFlicker),
       approx("unsorted", A::Unsorted, kFlicker),
   };
 }

@@ -17,7 +17,8 @@
 namespace oitbench::oit {
 
 // The technique table (techniques.hpp) names them; its entries carry the enumerator.
-enum class ApproxTechnique { Mlab, Umlab, Ht, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted };
+// GlobalSort: the splats sorted by centre depth every frame, then blended in that order (Kerbl et al. 2023).
+enum class ApproxTechnique { Mlab, Umlab, Ht, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted, GlobalSort };
 
 // The parameters the approximate techniques add to the oit experiment (ignored by the exact ones).
 std::vector<ParamSpec> approx_params();

@@ -21,11 +21,13 @@
 #include "oit/reference/visible_capture.hpp"
 #include "oit/scene/coverage_estimate.hpp"
 #include "oit/scene/gpu_mesh.hpp"
+#include "oit/scene/radix_sort.hpp"
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
 #include "oit/storage/storage_layout.hpp"
 #include "oit/techniques.hpp"
 #include "shaders/approx/bindings.h"
+#include "shaders/splats/bindings.h"
 
 namespace oitbench::oit {
 
@@ -101,7 +103,7 @@ class ApproxCase final : public OitCase {
     settings_.unguarded = p.get("guard") == "off";
     using T = ApproxTechnique;
     const T tech = settings_.technique;
-    arrays_ = tech != T::Wboit && tech != T::Unsorted;
+    arrays_ = tech != T::Wboit && tech != T::Unsorted && tech != T::GlobalSort;
     ht_ = tech == T::Ht;
     at_family_ = arrays_ && tech != T::Mlab && tech != T::Umlab && !ht_;
     bool interlock = p.get("sync") == "interlock";
@@ -131,6 +133,7 @@ class ApproxCase final : public OitCase {
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
 
     ref_ = reference_view(p, ctx, vp);
+    if (tech == T::GlobalSort) global_sort_model_view(p, ctx, vp);
     referencing.end();
 
     Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
@@ -177,9 +180,47 @@ class ApproxCase final : public OitCase {
           {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
       bytes_per_pixel_ = 16.0 + 4.0;
     } else {
+      if (tech == T::GlobalSort) build_global_sort(ctx, d, vp);
       blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
     }
+  }
+
+  // GLOBAL-SORT (Kerbl et al. 2023): every frame a compute pass keys each splat by its centre's view depth
+  // (shaders/splats/keys.comp) and the primitive radix sort orders them back to front; the blend pass then
+  // draws the splats in that order (SPLAT_ORDERED) with "over" blending, as `unsorted` draws them in theirs.
+  void build_global_sort(CaseContext& ctx, Defines& d, const glm::mat4& vp) {
+    const GpuSplats* splats = passes_.splats();
+    if (!splats)
+      throw Unsupported("GLOBAL-SORT sorts splats: scene '" + scene_.name + "' (" + scene_.path + ") has none");
+    d.push_back({"SPLAT_ORDERED", ""});
+    sort_ = std::make_unique<RadixSort>(ctx, splats->size(), 32);
+    keys_ = ctx.build({{GL_COMPUTE_SHADER, "splats/keys.comp"}}, {});
+    set_view_proj(keys_, vp);
+    bytes_per_pixel_ = static_cast<double>(sort_->bytes()) / (static_cast<double>(width_) * height_);
+  }
+  void sort_splats() {
+    const GLuint count = static_cast<GLuint>(sort_->size());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLATS_BINDING, passes_.splats()->buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLAT_KEYS_BINDING, sort_->keys_in().get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLAT_KEY_INDICES_BINDING, sort_->indices_in().get());
+    glUseProgram(keys_.get());
+    glUniform1ui(glGetUniformLocation(keys_.get(), "count"), count);
+    glDispatchCompute((count + 255) / 256, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    sort_->sort();
+  }
+  // GLOBAL-SORT's CPU model blends each pixel's fragments in the order of their splats' centres: the
+  // fragments captured with the centre key (splat_depth=centre), stably sorted far to near. With
+  // splat_depth=ray-max the reference's fragments carry the other key, so the model's are captured apart.
+  void global_sort_model_view(const ParamSet& p, CaseContext& ctx, const glm::mat4& vp) {
+    if (p.get("splat_depth") == "centre") return;
+    std::vector<std::pair<std::string, std::string>> values = p.values();
+    for (auto& [k, v] : values)
+      if (k == "splat_depth") v = "centre";
+    ParamSet centre(values);
+    ScenePasses fx(centre, ctx);
+    centre_host_ = std::make_unique<HostLists>(std::move(capture_visible_fragments(fx, vp, centre, ctx).host));
   }
 
   // The fragments, once, for the exact reference and the technique's CPU model.
@@ -225,7 +266,7 @@ class ApproxCase final : public OitCase {
   std::map<std::string, std::string> resolved_params() const override { return passes_.resolved_params(); }
   void set_view_projection(const glm::mat4& view_proj) override {
     passes_.set_view_projection(view_proj);
-    for (const gl::Program* prog : {&insert_, &blend_})
+    for (const gl::Program* prog : {&insert_, &blend_, &keys_})
       if (*prog) set_view_proj(*prog, view_proj);
   }
   GLuint result_texture() override { return out_.color_texture(); }
@@ -288,6 +329,10 @@ class ApproxCase final : public OitCase {
       }
       resolve(timer, true);
     } else {
+      if (sort_) {
+        auto t = timer.pass("sort");
+        sort_splats();
+      }
       auto t = timer.pass("blend");
       out_.bind();
       passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
@@ -307,7 +352,10 @@ class ApproxCase final : public OitCase {
   void draw_transparent(const gl::Program& program) {
     glUseProgram(program.get());
     passes_.begin_geometry();
-    passes_.transparent().draw();
+    if (sort_)
+      passes_.splats()->draw_ordered(sort_->sorted_indices().get());
+    else
+      passes_.transparent().draw();
     passes_.end_geometry();
   }
   // The full-screen resolve of the accumulated colour (and the revealage, where `reveal`) over the backdrop.
@@ -330,7 +378,7 @@ class ApproxCase final : public OitCase {
     const ListStats& stats = ref_->stats;
     const std::vector<double>& ref = ref_->composite;
     auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    ApproxModel model = approx_model(ref_->host, ref_->backdrop, settings_);
+    ApproxModel model = approx_model(centre_host_ ? *centre_host_ : ref_->host, ref_->backdrop, settings_);
     referencing.end();
     if (passes_.opaque()) m["hidden_fragments"] = std::to_string(ref_->hidden);
     ApproxError err = approx_error(rgb, ref);
@@ -406,7 +454,7 @@ class ApproxCase final : public OitCase {
   PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
   // The colour behind the transparent layers: one place, for the scene effects to replace.
   static std::string upper(std::string s) {
-    for (auto& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    for (auto& ch : s) ch = ch == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
     return s;
   }
   static void set_view_proj(const gl::Program& prog, const glm::mat4& vp) {
@@ -433,7 +481,9 @@ class ApproxCase final : public OitCase {
   std::unique_ptr<StorageResources> storage_;
   gl::Texture locks_, reveal_;
   gl::Buffer stats_;
-  gl::Program insert_, blend_, resolve_;
+  gl::Program insert_, blend_, resolve_, keys_;
+  std::unique_ptr<RadixSort> sort_;         // GLOBAL-SORT
+  std::unique_ptr<HostLists> centre_host_;  // GLOBAL-SORT with splat_depth=ray-max: the model's fragments
   int flicker_runs_;
   std::string dump_;
   std::vector<std::vector<float>> frames_;

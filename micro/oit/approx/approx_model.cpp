@@ -394,6 +394,10 @@ ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const App
       c = ht_pixel(frags, s, n, bg);
     } else if (tech == T::Unsorted) {
       for (const auto& f : frags) c = glm::vec3(f.colour) * f.colour.a + c * (1.0f - f.colour.a);
+    } else if (tech == T::GlobalSort) {  // fragments keyed by their splat's centre: its order, far to near
+      std::stable_sort(frags.begin(), frags.end(),
+                       [](const ArrivedFragment& a, const ArrivedFragment& b) { return a.depth > b.depth; });
+      for (const auto& f : frags) c = glm::vec3(f.colour) * f.colour.a + c * (1.0f - f.colour.a);
     } else if (tech == T::Wboit) {
       c = wboit_pixel(frags, st, bg);
     } else {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/gtc/matrix_transform.hpp>
+#include <memory>
 #include <numeric>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "oit/capture/fragment_lists.hpp"
 #include "oit/case_support.hpp"
 #include "oit/scene/gpu_mesh.hpp"
+#include "oit/scene/radix_sort.hpp"
 #include "shaders/lines/bindings.h"
 #include "shaders/shadow/bindings.h"
 
@@ -43,15 +45,13 @@ struct OpacityShadowMap::PrimitiveSet {
   GLenum mode = GL_TRIANGLES;
   int vertices = 3;
   size_t count = 0, base = 0;
-  gl::Buffer indices, keys0, index0, keys[2], index[2], local, blocks, elements, bounds, commands;
+  gl::Buffer indices, elements, bounds, commands;
   gl::Program keys_prog, emit, bounds_prog, commands_prog;
-  std::vector<gl::Program> split;
+  std::unique_ptr<RadixSort> sort;  // the primitives' (slice key, index) pairs
 
-  const gl::Buffer& sorted_keys(int bits) const { return keys[(bits - 1) % 2]; }
-  const gl::Buffer& sorted_index(int bits) const { return index[(bits - 1) % 2]; }
   size_t bytes(int slices) const {
     const size_t n = count * sizeof(unsigned);
-    return 7 * n + (count / 256 + 2) * sizeof(unsigned) + 2 * vertices * n + 7 * slices * sizeof(unsigned);
+    return sort->bytes() + 2 * vertices * n + 7 * slices * sizeof(unsigned);
   }
 };
 
@@ -95,9 +95,7 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
     if (!set.count) continue;
     set.indices = make_storage(static_cast<GLsizeiptr>(list->size() * sizeof(unsigned)), list->data());
     const GLsizeiptr n = static_cast<GLsizeiptr>(set.count * sizeof(unsigned));
-    for (auto* b : {&set.keys0, &set.index0, &set.keys[0], &set.keys[1], &set.index[0], &set.index[1], &set.local})
-      *b = make_storage(n);
-    set.blocks = make_storage(static_cast<GLsizeiptr>((set.count / 256 + 2) * sizeof(unsigned)));
+    set.sort = std::make_unique<RadixSort>(ctx, set.count, bits_);
     set.elements = make_storage(set.vertices * n);
     set.bounds = make_storage(static_cast<GLsizeiptr>(2 * slices_ * sizeof(unsigned)));
     set.commands = make_storage(static_cast<GLsizeiptr>(5 * slices_ * sizeof(unsigned)));
@@ -109,8 +107,6 @@ OpacityShadowMap::OpacityShadowMap(const CaseContext& ctx, const Mesh& mesh, con
     glProgramUniformMatrix4fv(keys, glGetUniformLocation(keys, "viewProj"), 1, GL_FALSE, &light_view_proj_[0][0]);
     glProgramUniform1f(keys, glGetUniformLocation(keys, "nearDistance"), near_);
     glProgramUniform1f(keys, glGetUniformLocation(keys, "farDistance"), far_);
-    for (const char* phase : {"PHASE_LOCAL", "PHASE_BLOCKS", "PHASE_SCATTER"})
-      set.split.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
     set.emit = ctx.build({{GL_COMPUTE_SHADER, "lines/emit_indices.comp"}}, primitive);
     Defines bounds = primitive, commands = primitive;
     bounds.emplace_back("PHASE_BOUNDS", "");
@@ -161,31 +157,15 @@ void OpacityShadowMap::build() {
 void OpacityShadowMap::sort_primitives(PrimitiveSet& set) {
   const GLuint count = static_cast<GLuint>(set.count), groups = (count + 255) / 256;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_VERTICES_BINDING, vertices_.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_KEYS_BINDING, set.keys0.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_INDICES_BINDING, set.index0.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_KEYS_BINDING, set.sort->keys_in().get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_INDICES_BINDING, set.sort->indices_in().get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_PRIMITIVES_BINDING, set.indices.get());
   glUseProgram(set.keys_prog.get());
   glUniform1ui(glGetUniformLocation(set.keys_prog.get(), "segments"), count);
   glDispatchCompute(groups, 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  for (int bit = 0; bit < bits_; ++bit) {  // the lines experiment's rounds (micro/experiments/lines.cpp)
-    const gl::Buffer& kin = bit == 0 ? set.keys0 : set.keys[(bit + 1) % 2];
-    const gl::Buffer& iin = bit == 0 ? set.index0 : set.index[(bit + 1) % 2];
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_KEYS_IN_BINDING, kin.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_INDICES_IN_BINDING, iin.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_KEYS_OUT_BINDING, set.keys[bit % 2].get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_INDICES_OUT_BINDING, set.index[bit % 2].get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_LOCAL_BINDING, set.local.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SPLIT_BLOCKS_BINDING, set.blocks.get());
-    for (size_t phase = 0; phase < set.split.size(); ++phase) {
-      glUseProgram(set.split[phase].get());
-      glUniform1ui(glGetUniformLocation(set.split[phase].get(), "count"), count);
-      glUniform1ui(glGetUniformLocation(set.split[phase].get(), "bit"), static_cast<GLuint>(bit));
-      glDispatchCompute(phase == 1 ? 1 : groups, 1, 1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-  }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_SORTED_BINDING, set.sorted_index(bits_).get());
+  set.sort->sort();  // the primitive radix sort the lines experiment and the splats' global sort run
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_SORTED_BINDING, set.sort->sorted_indices().get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_ELEMENTS_BINDING, set.elements.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_PRIMITIVES_BINDING, set.indices.get());
   glUseProgram(set.emit.get());
@@ -194,7 +174,7 @@ void OpacityShadowMap::sort_primitives(PrimitiveSet& set) {
   // Each slice's range of the sorted elements as an indirect draw.
   const GLuint zero = 0;
   glClearNamedBufferData(set.bounds.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_RANGES_SORTED_KEYS_BINDING, set.sorted_keys(bits_).get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_RANGES_SORTED_KEYS_BINDING, set.sort->sorted_keys().get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_RANGES_BOUNDS_BINDING, set.bounds.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_RANGES_COMMANDS_BINDING, set.commands.get());
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -328,8 +308,8 @@ ShadowCheck OpacityShadowMap::validate() {
   for (const auto& set : sets_) {
     const size_t n = set.count;
     std::vector<unsigned> own(n), order(n), gpu(n);
-    glGetNamedBufferSubData(set.keys0.get(), 0, static_cast<GLsizeiptr>(n * sizeof(unsigned)), own.data());
-    glGetNamedBufferSubData(set.sorted_index(bits_).get(), 0, static_cast<GLsizeiptr>(n * sizeof(unsigned)),
+    glGetNamedBufferSubData(set.sort->keys_in().get(), 0, static_cast<GLsizeiptr>(n * sizeof(unsigned)), own.data());
+    glGetNamedBufferSubData(set.sort->sorted_indices().get(), 0, static_cast<GLsizeiptr>(n * sizeof(unsigned)),
                             gpu.data());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return own[a] < own[b]; });
