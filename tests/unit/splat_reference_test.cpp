@@ -156,8 +156,12 @@ TEST(SplatReference, TilesAgreeWithBruteForceAndRunsRepeat) {
     SplatReferenceOptions o;
     o.order = order;
     const SplatImage img = splat_reference(splats, cam, o);
-    const SplatImage again = splat_reference(splats, cam, o);
+    o.threads = 1;
+    const SplatImage again = splat_reference(splats, cam, o);  // one worker: the same image, bit for bit
+    o.threads = 3;
+    const SplatImage third = splat_reference(splats, cam, o);
     ASSERT_TRUE(img.rgba == again.rgba && img.fragments == again.fragments);
+    ASSERT_TRUE(img.rgba == third.rgba && img.fragments == third.fragments);
     std::vector<std::optional<SplatProjection>> proj;
     for (const Splat& s : splats) proj.push_back(project_splat(s, cam));
     size_t deep = 0;

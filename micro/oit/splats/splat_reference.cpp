@@ -1,9 +1,11 @@
 #include "oit/splats/splat_reference.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <thread>
 
 namespace oitbench::oit {
 
@@ -178,14 +180,22 @@ SplatImage splat_reference(const SplatList& splats, const SplatCamera& c, const 
   out.height = c.height;
   out.rgba.assign(static_cast<size_t>(c.width) * c.height, glm::dvec4(o.background, 0.0));
   out.fragments.assign(out.rgba.size(), 0);
+  // Tiles are independent (each writes its own pixels): workers take them in turn, each with its own
+  // lists, and the image is the same whatever the number of workers.
   const int tiles_x = (c.width + kTile - 1) / kTile, tiles_y = (c.height + kTile - 1) / kTile;
-  std::vector<std::vector<Fragment>> lists(kTile * kTile);
-  for (int ty = 0; ty < tiles_y; ++ty)
-    for (int tx = 0; tx < tiles_x; ++tx) {
-      const size_t t = static_cast<size_t>(ty) * tiles_x + tx;
-      composite_tile(tx, ty, bins.splats.data() + bins.first[t], bins.splats.data() + bins.first[t + 1], proj, c, o,
-                     lists, out);
-    }
+  const size_t tiles = static_cast<size_t>(tiles_x) * tiles_y;
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    std::vector<std::vector<Fragment>> lists(kTile * kTile);
+    for (size_t t = next++; t < tiles; t = next++)
+      composite_tile(static_cast<int>(t % tiles_x), static_cast<int>(t / tiles_x), bins.splats.data() + bins.first[t],
+                     bins.splats.data() + bins.first[t + 1], proj, c, o, lists, out);
+  };
+  const size_t workers = std::clamp<size_t>(o.threads ? o.threads : std::thread::hardware_concurrency(), 1, tiles);
+  std::vector<std::thread> pool;
+  for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
   return out;
 }
 

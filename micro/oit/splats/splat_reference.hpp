@@ -35,7 +35,7 @@
 // then over the background: rgb = C + T background, a = 1 - T. With min_transmittance > 0, 3DGS's early
 // termination: the fragment that would take T below it is not blended, nor any after it.
 // Work and memory are bounded: splats are binned to 16x16 tiles by their quads and the tiles composited
-// one at a time, so only one tile's fragments are ever held.
+// one at a time per worker thread, so only one tile's fragments per worker are ever held.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -82,6 +82,7 @@ struct SplatReferenceOptions {
   SplatOrder order = SplatOrder::RayMaximum;
   double min_transmittance = 0;  // 3DGS's early termination at 1e-4; 0 blends every fragment
   glm::dvec3 background{1.0};
+  unsigned threads = 0;  // workers over the tiles; 0: one per hardware thread (the image is the same)
 };
 
 struct SplatImage {
