@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -108,6 +109,30 @@ TEST(SplatPly, HigherDegreesAreEvaluatedForTheView) {
   // Below 0 is clamped.
   const float dc[3] = {-5, 0, 0};
   EXPECT_EQ(sh_colour(0, dc, nullptr, glm::vec3(0, 0, 1)).r, 0.0f);
+}
+
+// The SH basis sh_colour sums is orthonormal over the sphere (each function seen through one f_rest
+// coefficient of 0.1, degree 3): a wrong constant or polynomial shows as a wrong integral.
+TEST(SplatPly, TheShBasisIsOrthonormal) {
+  const int n = 40000;
+  std::vector<std::array<double, 15>> y(n);
+  const float dc[3] = {0, 0, 0};
+  for (int i = 0; i < n; ++i) {  // a Fibonacci sphere: n nearly equal areas
+    const double z = 1 - (2 * i + 1.0) / n, r = std::sqrt(1 - z * z), phi = i * 2.399963229728653;
+    const glm::vec3 dir(r * std::cos(phi), r * std::sin(phi), z);
+    for (int k = 0; k < 15; ++k) {
+      std::vector<float> rest(45, 0.0f);
+      rest[k] = 0.1f;  // red's coefficient k + 1
+      y[i][k] = (sh_colour(3, dc, rest.data(), dir).r - 0.5) / 0.1;
+    }
+  }
+  const double area = 4 * 3.14159265358979323846 / n;
+  for (int a = 0; a < 15; ++a)
+    for (int b = a; b < 15; ++b) {
+      double sum = 0;
+      for (int i = 0; i < n; ++i) sum += y[i][a] * y[i][b] * area;
+      EXPECT_NEAR(sum, a == b ? 1.0 : 0.0, 2e-3) << a << "," << b;
+    }
 }
 
 TEST(SplatPly, AsciiFilesReadLikeBinaryOnes) {

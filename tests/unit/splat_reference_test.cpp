@@ -57,6 +57,10 @@ TEST(SplatReference, OneIsotropicSplatIsItsClosedForm) {
       EXPECT_NEAR(ray_max_depth(*p, {x + 0.5, y + 0.5}, cam), glm::dot(v, mu) / glm::dot(v, v), 1e-12);
     }
   EXPECT_GT(covered, 20);
+  // Outside the near and far planes: skipped.
+  EXPECT_FALSE(project_splat(s, splat_camera(front_view(), 64, 48, 4.0)));
+  EXPECT_FALSE(project_splat(s, splat_camera(front_view(), 64, 48, 0.1, 3.9)));
+  EXPECT_TRUE(project_splat(s, splat_camera(front_view(), 64, 48, 3.9, 4.1)));
   // A rotation changes nothing but rounding (the rotation is float).
   s.rotation = glm::normalize(glm::quat(0.3f, 0.5f, -0.2f, 0.7f));
   const SplatImage turned = splat_reference({s}, cam, o);

@@ -103,7 +103,7 @@ void composite_tile(int tx, int ty, const std::uint32_t* first, const std::uint3
 
 }  // namespace
 
-SplatCamera splat_camera(const View& view, int width, int height, double near_plane) {
+SplatCamera splat_camera(const View& view, int width, int height, double near_plane, double far_plane) {
   const glm::dmat4 m = glm::lookAt(glm::dvec3(view.eye), glm::dvec3(view.target), glm::dvec3(view.up));
   SplatCamera c;
   c.rotation = glm::dmat3(m);
@@ -117,6 +117,7 @@ SplatCamera splat_camera(const View& view, int width, int height, double near_pl
   c.cx = width / 2.0;
   c.cy = height / 2.0;
   c.near_plane = near_plane;
+  c.far_plane = far_plane;
   return c;
 }
 
@@ -124,7 +125,7 @@ std::optional<SplatProjection> project_splat(const Splat& s, const SplatCamera& 
   SplatProjection p;
   p.view_centre = c.rotation * glm::dvec3(s.position) + c.translation;
   const double t = -p.view_centre.z;
-  if (!(t > c.near_plane)) return std::nullopt;
+  if (!(t > c.near_plane) || t > c.far_plane) return std::nullopt;
   p.centre_depth = t;
   p.mean = glm::dvec2(c.cx + c.fx * p.view_centre.x / t, c.cy + c.fy * p.view_centre.y / t);
   const glm::dquat q(s.rotation.w, s.rotation.x, s.rotation.y, s.rotation.z);

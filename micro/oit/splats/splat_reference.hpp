@@ -5,7 +5,8 @@
 // Projection of one splat (Kerbl et al. 2023, "3D Gaussian Splatting for Real-Time Radiance Field
 // Rendering", and Zwicker et al.'s EWA splatting), project_splat():
 //   - view space is glm::lookAt(eye, target, up)'s: the camera looks along -z; a point's view depth is
-//     t = -z_view. A splat whose centre has t <= near_plane is skipped (3DGS skips t <= 0.2).
+//     t = -z_view. A splat whose centre has t <= near_plane or t > far_plane is skipped (3DGS skips
+//     t <= 0.2; the GPU culls the centres its clip z puts outside [-w, w], the same planes).
 //   - window coordinates are OpenGL's: pixels from the bottom-left, pixel (i, j)'s centre at (i + 0.5, j + 0.5);
 //     a view point (x, y, -t) lands at (cx + fx x / t, cy + fy y / t), cx = width / 2, cy = height / 2,
 //     fy = height / (2 tan(fov_y / 2)), fx = fy (square pixels; tan_fovx = tan_fovy * width / height).
@@ -37,6 +38,7 @@
 // Work and memory are bounded: splats are binned to 16x16 tiles by their quads and the tiles composited
 // one at a time per worker thread, so only one tile's fragments per worker are ever held.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -49,10 +51,12 @@ struct SplatCamera {
   glm::dmat3 rotation{1.0};     // W: world to view
   glm::dvec3 translation{0.0};  // view = W world + translation
   double fx = 1, fy = 1, cx = 0, cy = 0, tan_fovx = 1, tan_fovy = 1, near_plane = 0.01;
+  double far_plane = std::numeric_limits<double>::infinity();
   int width = 1, height = 1;
 };
-// The camera of a view for an image of width x height and the GPU's near plane (near_far(view, mesh).x).
-SplatCamera splat_camera(const View& view, int width, int height, double near_plane);
+// The camera of a view for an image of width x height and the GPU's near and far planes (near_far(view, mesh)).
+SplatCamera splat_camera(const View& view, int width, int height, double near_plane,
+                         double far_plane = std::numeric_limits<double>::infinity());
 
 struct SplatProjection {
   glm::dvec2 mean{0.0};            // window coordinates of the centre
