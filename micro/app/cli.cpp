@@ -1,6 +1,8 @@
 #include "app/cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -197,7 +199,8 @@ void declare_sampling(CLI::App& run, CliState& s) {
       ->group(sizing);
   run.add_option("--baseline", s.run.baseline,
                  "NAME=VALUE ...: the case each speedup divides by, run in every interleaved group of the cases "
-                 "it is the baseline of (e.g. technique=BASE-IS); replaces a preset's")
+                 "it is the baseline of (e.g. technique=" +
+                     oit::default_technique() + "); replaces a preset's")
       ->take_all()
       ->group(sizing);
 }
@@ -435,16 +438,24 @@ std::string unknown_subcommand(int argc, char** argv) {
 }
 
 void describe_app(CLI::App& app) {
-  app.footer(std::string("Examples:\n"
-                         "  oitbench list\n"
-                         "  oitbench --version\n"
-                         "  oitbench info --backend egl-device\n"
-                         "  oitbench run occupancy --quick --out results/occ.csv\n"
-                         "  oitbench run occupancy --set variant=unrolled --set size=32,33\n"
-                         "  oitbench run --preset default --out run.csv\n"
-                         "  oitbench render --scene hairball --view rev --technique MLAB --set nodes=8 --out mlab.png\n"
-                         "  oitbench view --scene hairball --technique BMA-IS\n\n") +
-             kExitCodes);
+  // The techniques of the examples, from the technique table: the first one with nodes, and the default's BMA twin.
+  const std::string nodes_technique = oit::techniques_reading("nodes").front();
+  std::string image = nodes_technique;
+  std::transform(image.begin(), image.end(), image.begin(), [](unsigned char c) { return std::tolower(c); });
+  const oit::Technique* bma = oit::bma_twin(oit::technique(oit::default_technique()));
+  app.footer(
+      "Examples:\n"
+      "  oitbench list\n"
+      "  oitbench --version\n"
+      "  oitbench info --backend egl-device\n"
+      "  oitbench run occupancy --quick --out results/occ.csv\n"
+      "  oitbench run occupancy --set variant=unrolled --set size=32,33\n"
+      "  oitbench run --preset default --out run.csv\n"
+      "  oitbench render --scene hairball --view rev --technique " +
+      nodes_technique + " --set nodes=8 --out " + image +
+      ".png\n"
+      "  oitbench view --scene hairball --technique " +
+      (bma ? bma->name : oit::default_technique()) + "\n\n" + kExitCodes);
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text(),
                        "Print the version (git describe of the source tree at build time) and the build options");
@@ -452,23 +463,22 @@ void describe_app(CLI::App& app) {
 
 // What a subcommand throws, as the exit code of docs/usage.md's table.
 int exit_code_of(const std::function<int()>& execute) {
+  const auto fail = [](const std::exception& e, int code, const char* what = "error") {
+    std::fprintf(stderr, "oitbench: %s: %s\n", what, e.what());
+    return code;
+  };
   try {
     return execute();
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "oitbench: error: %s\n", e.what());
-    return 2;
+    return fail(e, 2);
   } catch (const CsvError& e) {
-    std::fprintf(stderr, "oitbench: error: %s\n", e.what());
-    return 2;
+    return fail(e, 2);
   } catch (const FileError& e) {
-    std::fprintf(stderr, "oitbench: error: %s\n", e.what());
-    return 2;
+    return fail(e, 2);
   } catch (const BackendError& e) {
-    std::fprintf(stderr, "oitbench: cannot create a GL context: %s\n", e.what());
-    return 3;
+    return fail(e, 3, "cannot create a GL context");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "oitbench: error: %s\n", e.what());
-    return 1;
+    return fail(e, 1);
   }
 }
 

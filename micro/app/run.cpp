@@ -70,7 +70,7 @@ int run_command(Registry& registry, RunCommand& c) {
       try {
         kv = parse_set_option(b);
       } catch (const UsageError&) {
-        throw UsageError("--baseline " + b + ": expected NAME=VALUE, e.g. technique=BASE-IS");
+        throw UsageError("--baseline " + b + ": expected NAME=VALUE, e.g. technique=" + oit::default_technique());
       }
       const auto& [k, v] = kv;
       if (v.size() != 1) throw UsageError("--baseline " + b + ": give one value, NAME=VALUE");

@@ -34,6 +34,22 @@ bool parse_number(const std::string& v, bool integer, double& out) {
 }
 }  // namespace
 
+ParamSpec ParamSpec::choice(std::string name, std::string description, std::vector<std::string> allowed,
+                            std::vector<std::string> defaults, std::vector<std::string> quick) {
+  if (defaults.empty()) defaults = allowed;
+  return {std::move(name), std::move(description), std::move(defaults), std::move(quick), std::move(allowed)};
+}
+
+ParamSpec ParamSpec::integer(std::string name, std::string description, double min, double max,
+                             std::vector<std::string> defaults, std::vector<std::string> quick) {
+  return {std::move(name), std::move(description), std::move(defaults), std::move(quick), {}, Kind::Integer, min, max};
+}
+
+ParamSpec ParamSpec::text(std::string name, std::string description, std::vector<std::string> defaults,
+                          std::vector<std::string> quick) {
+  return {std::move(name), std::move(description), std::move(defaults), std::move(quick), {}};
+}
+
 bool parse_exact_integer(const std::string& v, long long& out) {
   if (v.empty() || v.size() > 24) return false;
   size_t i = v[0] == '-' || v[0] == '+' ? 1 : 0;

@@ -44,6 +44,18 @@ struct ParamSpec {
   // may read any, and is asked for every case).
   std::vector<std::string> applies_if_reads = {};
 
+  // Named constructors, so that a declaration reads as what it is. `defaults` is the full grid,
+  // `quick` the --quick grid (empty: the defaults).
+  // One of `allowed`; empty defaults: every allowed value.
+  static ParamSpec choice(std::string name, std::string description, std::vector<std::string> allowed,
+                          std::vector<std::string> defaults = {}, std::vector<std::string> quick = {});
+  // An integer in [min, max].
+  static ParamSpec integer(std::string name, std::string description, double min, double max,
+                           std::vector<std::string> defaults, std::vector<std::string> quick = {});
+  // Any text (a scene name or a path): the experiment checks it.
+  static ParamSpec text(std::string name, std::string description, std::vector<std::string> defaults,
+                        std::vector<std::string> quick = {});
+
   ParamSpec& only_when(std::string param, std::vector<std::string> values) {
     applies_when.push_back({std::move(param), std::move(values)});
     return *this;

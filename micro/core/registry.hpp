@@ -144,6 +144,30 @@ class Experiment {
   virtual std::vector<std::string> checked_params() const { return {}; }
 };
 
+// Most experiments: a name, a description, the render targets (default and --quick), and cases of one
+// class built from (parameters, context). Such an experiment derives from ExperimentOf<ItsCase>, passes
+// those to the constructor, and overrides only what it adds (params(), metric_specs(), unsupported_reason()).
+template <class Case>
+class ExperimentOf : public Experiment {
+ public:
+  ExperimentOf(std::string name, std::string description, Resolution resolution, Resolution quick_resolution)
+      : name_(std::move(name)),
+        description_(std::move(description)),
+        resolution_(resolution),
+        quick_resolution_(quick_resolution) {}
+  std::string name() const override { return name_; }
+  std::string description() const override { return description_; }
+  Resolution default_resolution() const override { return resolution_; }
+  Resolution quick_resolution() const override { return quick_resolution_; }
+  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
+    return std::make_unique<Case>(p, ctx);
+  }
+
+ private:
+  std::string name_, description_;
+  Resolution resolution_, quick_resolution_;
+};
+
 class Registry {
  public:
   // Throws std::logic_error for a second experiment of the same name, or a metric that collides

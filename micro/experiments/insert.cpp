@@ -64,13 +64,7 @@ class InsertCase final : public CaseInstance {
         height_(ctx.height()),
         target_(ctx.width(), ctx.height(), GL_R32UI) {
     size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
-    size_t bytes = pixels * static_cast<size_t>(size_) * sizeof(Fragment);
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (static_cast<GLint64>(bytes) > max_block)
-      throw Unsupported("insert: " + std::to_string(bytes) +
-                        " bytes of fragments exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" + std::to_string(max_block) +
-                        "); use a smaller --resolution");
+    const size_t bytes = require_fragment_block(pixels * static_cast<size_t>(size_), "insert");
     std::string keys_define = keys_ == "front" ? "KEYS_FRONT" : keys_ == "back" ? "KEYS_BACK" : "KEYS_RANDOM";
     program_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "insert/insert.frag"}},
                          {{"SORT_N", std::to_string(size_)},
@@ -155,52 +149,31 @@ class InsertCase final : public CaseInstance {
   gl::Buffer in_, out_;
 };
 
-class InsertExperiment final : public Experiment {
+class InsertExperiment final : public ExperimentOf<InsertCase> {
  public:
-  std::string name() const override { return "insert"; }
-  std::string description() const override {
-    return "inserting one element into a sorted per-pixel array, repeated per pixel (Brüll 2018 4.4, Table A.2): "
-           "early out (Listing 4.8) vs none (4.9) vs two moves (A.1); ms per pass";
-  }
+  InsertExperiment()
+      : ExperimentOf("insert",
+                     "inserting one element into a sorted per-pixel array, repeated per pixel (Brüll 2018 4.4, Table "
+                     "A.2): early out (Listing 4.8) vs none (4.9) vs two moves (A.1); ms per pass",
+                     {256, 256}, {128, 128}) {}
   std::vector<ParamSpec> params() const override {
-    ParamSpec variant{"variant",
-                      "early-out: swap, stop when in place (Listing 4.8); no-early-out: swap where out of order "
-                      "(4.9); two-moves: two moves instead of a swap (A.1)",
-                      {"early-out", "no-early-out", "two-moves"},
-                      {},
-                      {"early-out", "no-early-out", "two-moves"}};
-    ParamSpec size{"size",
-                   "fragments in the sorted array",
-                   {"4", "8", "12", "16", "20", "24", "28", "32"},
-                   {"8", "32"},
-                   {},
-                   ParamSpec::Kind::Integer,
-                   2,
-                   32};
-    ParamSpec repeat{"repeat", "insertions per pixel (the thesis: 128 Village, 16 Powerplant)",
-                     {"128"},  {"32"},
-                     {},       ParamSpec::Kind::Integer,
-                     1,        100000};
-    ParamSpec keys{"keys",
-                   "new keys: random (uniform; as the array keeps the largest keys most stop early), front (smaller "
-                   "than all: stop at once), back (larger than all: travel the whole array)",
-                   {"random", "back"},
-                   {"random"},
-                   {"random", "front", "back"}};
-    ParamSpec memory{"memory",
-                     "registers: constant loop bounds (unrolled); local: uniform bounds",
-                     {"registers"},
-                     {},
-                     {"registers", "local"}};
-    return {variant, size, repeat, keys, memory};
+    return {ParamSpec::choice("variant",
+                              "early-out: swap, stop when in place (Listing 4.8); no-early-out: swap where out of "
+                              "order (4.9); two-moves: two moves instead of a swap (A.1)",
+                              {"early-out", "no-early-out", "two-moves"}),
+            ParamSpec::integer("size", "fragments in the sorted array", 2, 32,
+                               {"4", "8", "12", "16", "20", "24", "28", "32"}, {"8", "32"}),
+            ParamSpec::integer("repeat", "insertions per pixel (the thesis: 128 Village, 16 Powerplant)", 1, 100000,
+                               {"128"}, {"32"}),
+            ParamSpec::choice("keys",
+                              "new keys: random (uniform; as the array keeps the largest keys most stop early), "
+                              "front (smaller than all: stop at once), back (larger than all: travel the whole array)",
+                              {"random", "front", "back"}, {"random", "back"}, {"random"}),
+            ParamSpec::choice("memory", "registers: constant loop bounds (unrolled); local: uniform bounds",
+                              {"registers", "local"}, {"registers"})};
   }
   std::vector<MetricSpec> metric_specs() const override {
     return {{"mismatched_pixels", ValueType::Integer, "", "pixels whose array differs from the CPU reference"}};
-  }
-  Resolution default_resolution() const override { return {256, 256}; }
-  Resolution quick_resolution() const override { return {128, 128}; }
-  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
-    return std::make_unique<InsertCase>(p, ctx);
   }
 };
 

@@ -117,42 +117,36 @@ class LayoutCase final : public CaseInstance {
   gl::Program program_;
 };
 
-class LayoutExperiment final : public Experiment {
+class LayoutExperiment final : public ExperimentOf<LayoutCase> {
  public:
-  std::string name() const override { return "layout"; }
-  std::string description() const override {
-    return "per-pixel storage layouts (Bruell 2018, Eq. 4.1/4.2, Table 4.1): the same node-array read-modify-write "
-           "as ssbo, texture3d, interleaved SSBO (group, alignment) or buffer-texture reads; lost updates counted";
-  }
+  LayoutExperiment()
+      : ExperimentOf("layout",
+                     "per-pixel storage layouts (Bruell 2018, Eq. 4.1/4.2, Table 4.1): the same node-array "
+                     "read-modify-write as ssbo, texture3d, interleaved SSBO (group, alignment) or buffer-texture "
+                     "reads; lost updates counted",
+                     {800, 800}, {128, 128}) {}  // the thesis's
   std::vector<ParamSpec> params() const override {
-    ParamSpec layout{"layout",
-                     "storage: ssbo (Eq. 4.1), texture3d (image3D), texbuffer (Eq. 4.1 read through a buffer "
-                     "texture), interleaved-GXxGY-aA (Eq. 4.2, gx x gy groups, nodes in runs of A)",
-                     StorageLayout::names(),
-                     {"ssbo", "texture3d", "texbuffer", "interleaved-2x4-a1", "interleaved-2x4-a4"},
-                     StorageLayout::names()};
-    ParamSpec nodes{"nodes", "nodes (uvec2) per pixel", {"4", "8", "16"}, {"4"}, {}, ParamSpec::Kind::Integer, 4, 32};
-    ParamSpec layers{"layers", "overlapping screen-filling layers per draw (1: race-free and exact)",
-                     {"8"},    {"4"},
-                     {},       ParamSpec::Kind::Integer,
-                     1,        4096};
-    ParamSpec draws{
-        "draws", "draws per repetition (barrier between draws)", {"2"}, {"2"}, {}, ParamSpec::Kind::Integer, 1, 4096};
-    ParamSpec order{"order",
-                    "store order: sequential, or scattered (a per-fragment rotation, like UMLAB's writes)",
-                    {"sequential"},
-                    {},
-                    {"sequential", "scattered"}};
     // The compared parameter last: the grid's innermost loop, so one interleaved group holds all layouts.
-    return {nodes, layers, draws, order, layout};
+    return {
+        ParamSpec::integer("nodes", "nodes (uvec2) per pixel", 4, 32, {"4", "8", "16"}, {"4"}),
+        ParamSpec::integer("layers", "overlapping screen-filling layers per draw (1: race-free and exact)", 1, 4096,
+                           {"8"}, {"4"}),
+        ParamSpec::integer("draws", "draws per repetition (barrier between draws)", 1, 4096, {"2"}, {"2"}),
+        ParamSpec::choice("order",
+                          "store order: sequential, or scattered (a per-fragment rotation, like an unordered per-pixel "
+                          "insertion's writes)",
+                          {"sequential", "scattered"}, {"sequential"}),
+        ParamSpec::choice("layout",
+                          "storage: ssbo (Eq. 4.1), texture3d (image3D), texbuffer (Eq. 4.1 read through a "
+                          "buffer texture), interleaved-GXxGY-aA (Eq. 4.2, gx x gy groups, nodes in runs of A)",
+                          StorageLayout::names(), {},
+                          {"ssbo", "texture3d", "texbuffer", "interleaved-2x4-a1", "interleaved-2x4-a4"})};
   }
   std::vector<MetricSpec> metric_specs() const override {
     return {{"lost_updates", ValueType::Integer, "", "writes that did not land"},
             {"lost_pixels", ValueType::Integer, "", "pixels with at least one lost write"},
             {"inconsistent_nodes", ValueType::Integer, "", "nodes whose halves disagree (a torn write)"}};
   }
-  Resolution default_resolution() const override { return {800, 800}; }  // the thesis's
-  Resolution quick_resolution() const override { return {128, 128}; }
   // All 15 layouts of one grid point interleaved (paired comparison): up to 82 MB each at 800x800, n=16.
   int max_interleave(Resolution) const override { return 15; }
   std::string unsupported_reason(const GlInfo&, const ParamSet& p) const override {
@@ -160,9 +154,6 @@ class LayoutExperiment final : public Experiment {
     if (l.kind == StorageLayout::Kind::Interleaved && p.get_int("nodes") % l.align != 0)
       return "nodes=" + p.get("nodes") + " is not a multiple of the alignment " + std::to_string(l.align);
     return "";
-  }
-  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
-    return std::make_unique<LayoutCase>(p, ctx);
   }
 };
 

@@ -7,12 +7,15 @@
 // The slice sort is validated exactly (a stable CPU sort of the same keys); its image's error against
 // the per-fragment exact reference is data (`rmse` etc.), since slices are an approximation.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <initializer_list>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/registry.hpp"
 #include "gl/render_target.hpp"
@@ -53,12 +56,6 @@ Mesh hair_mesh(SceneDesc scene, const View& view, long long segments) {
   return mesh;
 }
 
-unsigned next_pow2(unsigned v) {
-  unsigned p = 1;
-  while (p < v) p <<= 1;
-  return p;
-}
-
 class LinesCase final : public CaseInstance {
  public:
   LinesCase(const ParamSet& p, CaseContext& ctx, const SceneDesc& scene)
@@ -94,7 +91,7 @@ class LinesCase final : public CaseInstance {
     stats_ = list_stats(host);
     reference_ = composite_reference(host, background_);
     if (!slices_mode_) {
-      max_frags_ = std::max(8u, next_pow2(stats_.peak_depth));
+      max_frags_ = std::max(8u, std::bit_ceil(stats_.peak_depth));
       resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve/resolve.frag"}},
                            sort_defines(ResolveSort::IMS, max_frags_, 32));
       glProgramUniform3f(resolve_.get(), glGetUniformLocation(resolve_.get(), "background"), background_.r,
@@ -142,28 +139,23 @@ class LinesCase final : public CaseInstance {
       glDisable(GL_BLEND);
       return;
     }
-    const GLuint groups = static_cast<GLuint>((segments_ + 255) / 256), count = static_cast<GLuint>(segments_);
     {
       auto t = timer.pass("keys");
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_VERTICES_BINDING, mesh_->vertex_buffer());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_KEYS_BINDING, sort_->keys_in().get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_INDICES_BINDING, sort_->indices_in().get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICE_KEYS_PRIMITIVES_BINDING, mesh_->line_index_buffer());
-      glUseProgram(keys_prog_.get());
-      glUniform1ui(glGetUniformLocation(keys_prog_.get(), "segments"), count);
-      glDispatchCompute(groups, 1, 1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      per_segment(keys_prog_,
+                  {{SLICE_KEYS_VERTICES_BINDING, mesh_->vertex_buffer()},
+                   {SLICE_KEYS_KEYS_BINDING, sort_->keys_in().get()},
+                   {SLICE_KEYS_INDICES_BINDING, sort_->indices_in().get()},
+                   {SLICE_KEYS_PRIMITIVES_BINDING, mesh_->line_index_buffer()}},
+                  GL_SHADER_STORAGE_BARRIER_BIT);
     }
     {
       auto t = timer.pass("sort");
       sort_->sort();  // micro/oit/scene/radix_sort.hpp: the one primitive sort
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_SORTED_BINDING, sorted_index().get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_ELEMENTS_BINDING, elements_.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMIT_PRIMITIVES_BINDING, mesh_->line_index_buffer());
-      glUseProgram(emit_.get());
-      glUniform1ui(glGetUniformLocation(emit_.get(), "segments"), count);
-      glDispatchCompute(groups, 1, 1);
-      glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT);
+      per_segment(emit_,
+                  {{EMIT_SORTED_BINDING, sorted_index().get()},
+                   {EMIT_ELEMENTS_BINDING, elements_.get()},
+                   {EMIT_PRIMITIVES_BINDING, mesh_->line_index_buffer()}},
+                  GL_ELEMENT_ARRAY_BARRIER_BIT);
     }
     auto t = timer.pass("blend");
     target_.bind();
@@ -229,6 +221,16 @@ class LinesCase final : public CaseInstance {
 
  private:
   const gl::Buffer& sorted_index() const { return sort_->sorted_indices(); }
+  // A compute pass of one thread per segment (256 per group) reading and writing `buffers` (binding,
+  // buffer), then `barrier` for what reads its output.
+  void per_segment(const gl::Program& program, std::initializer_list<std::pair<GLuint, GLuint>> buffers,
+                   GLbitfield barrier) const {
+    for (const auto& [binding, buffer] : buffers) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
+    glUseProgram(program.get());
+    glUniform1ui(glGetUniformLocation(program.get(), "segments"), static_cast<GLuint>(segments_));
+    glDispatchCompute(static_cast<GLuint>((segments_ + 255) / 256), 1, 1);
+    glMemoryBarrier(barrier);
+  }
 
   void capture() {
     target_.bind();
@@ -264,32 +266,25 @@ class LinesExperiment final : public Experiment {
            "front; time and error against exact";
   }
   std::vector<ParamSpec> params() const override {
-    ParamSpec technique{"technique",
-                        "exact: linked lists + BASE-IMS resolve; slices: per-segment radix sort + blend",
-                        {"exact", "slices"},
-                        {},
-                        {"exact", "slices"}};
-    ParamSpec segments{"segments",
-                       "line segments, split over the scene's strands (the poster's models: beard 90 K, woman2 320 K, "
-                       "woman1 620 K, dog 1.8 M); 0: as many as the scene file says",
-                       {"90000", "320000", "620000", "1800000"},
-                       {"20000"},
-                       {},
-                       ParamSpec::Kind::Integer,
-                       0,
-                       50000000};
-    ParamSpec slices{
-        "slices", "depth slices of the primitive sort (a power of two)", {"256"}, {}, {}, ParamSpec::Kind::Integer, 2,
-        65536};
+    ParamSpec technique = ParamSpec::choice("technique",
+                                            "exact: linked lists sorted per pixel by insertion+merge sort (IMS) and "
+                                            "blended; slices: per-segment radix sort + blend",
+                                            {"exact", "slices"});
+    ParamSpec segments =
+        ParamSpec::integer("segments",
+                           "line segments, split over the scene's strands (the poster's models: beard 90 K, woman2 320 "
+                           "K, woman1 620 K, dog 1.8 M); 0: as many as the scene file says",
+                           0, 50000000, {"90000", "320000", "620000", "1800000"}, {"20000"});
+    ParamSpec slices =
+        ParamSpec::integer("slices", "depth slices of the primitive sort (a power of two)", 2, 65536, {"256"});
     // The scene and view columns are oit's too, and the schema takes the first experiment's wording: it fits both.
-    ParamSpec scene{"scene",
-                    "scene name in scenes/ (shipped: planes, planes-deep, hairball, hair, smoke, engine-grid, house) "
-                    "or a path to a scene .json; lines draws its line strands only",
-                    {"hair"},
-                    {},
-                    {}};
-    ParamSpec view{
-        "view", "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)", {"fwd"}, {}, {}};
+    ParamSpec scene =
+        ParamSpec::text("scene",
+                        "scene name in scenes/ (shipped: planes, planes-deep, hairball, hair, smoke, engine-grid, "
+                        "house) or a path to a scene .json; lines draws its line strands only",
+                        {"hair"});
+    ParamSpec view = ParamSpec::text(
+        "view", "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)", {"fwd"});
     return {technique, segments, slices, scene, view};
   }
   std::vector<MetricSpec> metric_specs() const override {

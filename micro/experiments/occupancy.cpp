@@ -213,37 +213,26 @@ class OccupancyCase final : public CaseInstance {
   std::map<std::string, std::string> metrics_;
 };
 
-class OccupancyExperiment final : public Experiment {
+class OccupancyExperiment final : public ExperimentOf<OccupancyCase> {
  public:
-  std::string name() const override { return "occupancy"; }
-  std::string description() const override {
-    return "local array size vs time (Knowles 2013 BMA, fig. 3): a full-screen pass holding vec4 myArray[SIZE], "
-           "drawn `draws` times; ms for all draws";
-  }
+  OccupancyExperiment()
+      : ExperimentOf("occupancy",
+                     "local array size vs time (Knowles 2013 BMA, fig. 3): a full-screen pass holding vec4 "
+                     "myArray[SIZE], drawn `draws` times; ms for all draws",
+                     {800, 600}, {200, 150}) {}
   std::vector<ParamSpec> params() const override {
-    ParamSpec variant{"variant",
-                      "dynamic: indexed by a uniform (local/scratch memory); unrolled: constant "
-                      "indices after unrolling (registers where the compiler can)",
-                      {"dynamic", "unrolled"},
-                      {},
-                      {"dynamic", "unrolled"}};
-    ParamSpec size{"size",
-                   "elements in vec4 myArray[SIZE]",
-                   default_sizes(),
-                   {"1", "8", "32", "33", "64"},
-                   {},
-                   ParamSpec::Kind::Integer,
-                   1,
-                   1024};
-    ParamSpec draws{"draws", "full-screen draws per repetition", {"64"}, {"8"},
-                    {},      ParamSpec::Kind::Integer,           1,      100000};
-    ParamSpec model{"model_gpu",
-                    "GPU budget for predicted_occupancy: auto (from GL_RENDERER), or one of the table",
-                    {"auto"},
-                    {},
-                    {"auto"}};
-    for (const auto& g : gpu_budgets()) model.allowed.push_back(g.key);
-    return {variant, size, draws, model};
+    std::vector<std::string> models = {"auto"};
+    for (const auto& g : gpu_budgets()) models.push_back(g.key);
+    return {ParamSpec::choice("variant",
+                              "dynamic: indexed by a uniform (local/scratch memory); unrolled: constant indices "
+                              "after unrolling (registers where the compiler can)",
+                              {"dynamic", "unrolled"}),
+            ParamSpec::integer("size", "elements in vec4 myArray[SIZE]", 1, 1024, default_sizes(),
+                               {"1", "8", "32", "33", "64"}),
+            ParamSpec::integer("draws", "full-screen draws per repetition", 1, 100000, {"64"}, {"8"}),
+            ParamSpec::choice("model_gpu",
+                              "GPU budget for predicted_occupancy: auto (from GL_RENDERER), or one of the table",
+                              models, {"auto"})};
   }
   std::vector<MetricSpec> metric_specs() const override {
     return {{"predicted_occupancy", ValueType::Number, "",
@@ -258,11 +247,6 @@ class OccupancyExperiment final : public Experiment {
              "how measured_occupancy was measured (slots, SMs), or why it is empty (e.g. the driver lacks "
              "GL_NV_shader_thread_group)"},
             {"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"}};
-  }
-  Resolution default_resolution() const override { return {800, 600}; }
-  Resolution quick_resolution() const override { return {200, 150}; }
-  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
-    return std::make_unique<OccupancyCase>(p, ctx);
   }
 };
 

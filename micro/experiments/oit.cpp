@@ -63,82 +63,55 @@ struct ExactParams {
   ParamSpec block, pool, max_frags, cs_group, auto_cache, frag_colour, frag_depth, block_sort, order_check;
 };
 ExactParams exact_params() {
-  ParamSpec block{"block", "RBS block size MAX_REGISTERS (the paper: 32)", {"32"}, {"8"}, {"4", "8", "16", "32"}};
-  ParamSpec pool{"initial_pool",
-                 "first node pool in fragments (0: 4 per pixel); later frames size it from the last "
-                 "count",
-                 {"0"},
-                 {},
-                 {},
-                 ParamSpec::Kind::Integer,
-                 0,
-                 1e9};
-  ParamSpec max_frags{"max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)",
-                      {"0"},       {},
-                      {},          ParamSpec::Kind::Integer,
-                      0,           4096};
-  ParamSpec cs_group{"cs_group",
-                     "CS-* work group in pixels (8-wide rows by default; PLATFORM.md: a stream-form "
-                     "resolve was miscompiled with 4x4 groups on llvmpipe)",
-                     {"8x1"},
-                     {},
-                     {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}};
-  ParamSpec auto_cache{"bma_auto_cache",
-                       "BMA-AUTO: on reads and writes the per-driver choice cache "
-                       "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
-                       {"on"},
-                       {},
-                       {"on", "off"}};
-  ParamSpec frag_colour{"frag_colour",
-                        "what a captured fragment keeps of its colour: rgba8 (packUnorm4x8, the papers' 8-byte "
-                        "node with the depth), rgba16f (binary16, 12-byte node), rgba32f (float, 20-byte node); "
-                        "docs/precision.md",
-                        {"rgba8"},
-                        {},
-                        frag_colour_names()};
-  ParamSpec frag_depth{"frag_depth",
-                       "the depth a fragment is sorted by: window (gl_FragCoord.z) or view (float32 view-space "
-                       "distance along the view axis: relative precision 6e-8 at every distance)",
-                       {"window"},
-                       {},
-                       frag_depth_names()};
-  ParamSpec block_sort{"block_sort",
-                       "how RBS sorts each register block: insertion (RS, Knowles 2014 Listing 5: an insertion "
-                       "network with branches), bitonic or odd-even-merge (branchless register networks, fully "
-                       "unrolled: shaders/sorts/network.glsl)",
-                       {"insertion"},
-                       {},
-                       block_sort_names()};
-  ParamSpec order_check{"order_check",
-                        "IS, IMS and RBS-L resolves: on checks each pixel's list order while loading it and skips "
-                        "the sort (and RBS-L's merge) of a list already far-to-near and blends one near-to-far "
-                        "backwards in O(n) (the lists of front-to-back or back-to-front submission); off sorts "
-                        "every list (the papers)",
-                        {"off"},
-                        {},
-                        {"off", "on"}};
+  ParamSpec block =
+      ParamSpec::choice("block", "RBS block size MAX_REGISTERS (the paper: 32)", {"4", "8", "16", "32"}, {"32"}, {"8"});
+  ParamSpec pool = ParamSpec::integer(
+      "initial_pool", "first node pool in fragments (0: 4 per pixel); later frames size it from the last count", 0, 1e9,
+      {"0"});
+  ParamSpec max_frags = ParamSpec::integer(
+      "max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)", 0, 4096, {"0"});
+  ParamSpec cs_group =
+      ParamSpec::choice("cs_group",
+                        "compute resolve's work group in pixels (8-wide rows by default; PLATFORM.md: a "
+                        "stream-form resolve was miscompiled with 4x4 groups on llvmpipe)",
+                        {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}, {"8x1"});
+  ParamSpec auto_cache = ParamSpec::choice("bma_auto_cache",
+                                           "on: reads and writes the per-driver choice cache "
+                                           "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",
+                                           {"on", "off"}, {"on"});
+  ParamSpec frag_colour = ParamSpec::choice(
+      "frag_colour",
+      "what a captured fragment keeps of its colour: rgba8 (packUnorm4x8, the papers' 8-byte node with the depth), "
+      "rgba16f (binary16, 12-byte node), rgba32f (float, 20-byte node); docs/precision.md",
+      frag_colour_names(), {"rgba8"});
+  ParamSpec frag_depth =
+      ParamSpec::choice("frag_depth",
+                        "the depth a fragment is sorted by: window (gl_FragCoord.z) or view (float32 view-space "
+                        "distance along the view axis: relative precision 6e-8 at every distance)",
+                        frag_depth_names(), {"window"});
+  ParamSpec block_sort = ParamSpec::choice(
+      "block_sort",
+      "how RBS sorts each register block: insertion (RS, Knowles 2014 Listing 5: an insertion network with branches), "
+      "bitonic or odd-even-merge (branchless register networks, fully unrolled: shaders/sorts/network.glsl)",
+      block_sort_names(), {"insertion"});
+  ParamSpec order_check = ParamSpec::choice(
+      "order_check",
+      "on checks each pixel's list order while loading it and skips the sort (and RBS-L's "
+      "merge) of a list already far-to-near and blends one near-to-far backwards in O(n) (the lists of front-to-back "
+      "or back-to-front submission); off sorts every list (the papers)",
+      {"off", "on"}, {"off"});
   return {block, pool, max_frags, cs_group, auto_cache, frag_colour, frag_depth, block_sort, order_check};
 }
 
 // The self-shadowing effect's parameters (micro/oit/scene/shadow_map.hpp): read only where the scene declares it.
 std::pair<ParamSpec, ParamSpec> shadow_params() {
-  ParamSpec shadow_slices{"shadow_slices",
-                          "self-shadowing: depth slices of the opacity shadow map (scenes whose effects hold "
-                          "self-shadowing; others run no shadow pass)",
-                          {"64"},
-                          {},
-                          {},
-                          ParamSpec::Kind::Integer,
-                          2,
-                          1024};
-  ParamSpec shadow_resolution{"shadow_resolution",
-                              "self-shadowing: the opacity shadow map's width and height in texels",
-                              {"256"},
-                              {"128"},
-                              {},
-                              ParamSpec::Kind::Integer,
-                              8,
-                              4096};
+  ParamSpec shadow_slices = ParamSpec::integer("shadow_slices",
+                                               "self-shadowing: depth slices of the opacity shadow map (scenes whose "
+                                               "effects hold self-shadowing; others run no shadow pass)",
+                                               2, 1024, {"64"});
+  ParamSpec shadow_resolution =
+      ParamSpec::integer("shadow_resolution", "self-shadowing: the opacity shadow map's width and height in texels", 8,
+                         4096, {"256"}, {"128"});
   // Read only where the case's scene and effects hold self-shadowing: elsewhere unused (empty in the
   // rows), so a list of them does not multiply those cases in a grid that mixes scenes, and a list
   // where no case holds it is a usage error (CaseGrid::check_overrides_apply).
@@ -154,41 +127,24 @@ std::pair<ParamSpec, ParamSpec> shadow_params() {
 class OitExperiment final : public Experiment {
  public:
   std::string name() const override { return "oit"; }
-  std::string description() const override {
-    return "exact OIT (Knowles 2013 BMA, 2014 RBS): fragments captured from a scene file into per-pixel linked lists "
-           "(PPLL) or packed per-pixel arrays (PPPA), resolved by "
-           "BASE/BMA x IS/IMS/RBS-L or on the CPU (CPU-NATIVE); validated against a double-precision CPU compositor. "
-           "Approximate OIT (Bruell 2018: MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT; WBOIT; unsorted, "
-           "micro/oit/approx/approx_case.cpp; MBOIT, Muenstermann 2018; STOCHASTIC, Enderton 2010, "
-           "micro/oit/moments/moments.hpp; WOIT, Aizenshtein 2022, micro/oit/wavelets/wavelets.hpp) "
-           "is validated against each technique's own CPU model, its error vs the exact image reported as data. "
-           "Depth peeling (Everitt 2001 DP, Bavoil & Myers 2008 DDP, micro/oit/peel/peel_case.cpp) is exact when it "
-           "peels every layer, validated against a CPU model of the layers it peeled when max_layers stops it";
-  }
+  std::string description() const override { return oit_description(); }
   std::vector<ParamSpec> params() const override {
-    ParamSpec scene{"scene",
-                    "scene name in scenes/ (shipped: planes, planes-deep, hairball, hair, smoke, engine-grid, house) "
-                    "or a path to a scene .json",
-                    {"planes", "hairball", "smoke"},
-                    {"planes", "hairball"},
-                    {}};
-    ParamSpec view{"view",
-                   "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)",
-                   {"fwd", "rev"},
-                   {},
-                   {}};
+    ParamSpec scene = ParamSpec::text("scene",
+                                      "scene name in scenes/ (shipped: planes, planes-deep, hairball, hair, smoke, "
+                                      "engine-grid, house) or a path to a scene .json",
+                                      {"planes", "hairball", "smoke"}, {"planes", "hairball"});
+    ParamSpec view = ParamSpec::text(
+        "view", "camera view named in the scene file (fwd: lists arrive sorted, rev: reverse sorted)", {"fwd", "rev"});
     ParamSpec technique{"technique", techniques_description(), techniques_where(&Technique::in_default),
                         techniques_where(&Technique::in_quick), technique_names()};
-    ParamSpec detail{
-        "detail", "scene size: full, or the scene file's small overrides", {"full"}, {"small"}, {"full", "small"}};
-    ParamSpec capture{"capture",
-                      "where the captured fragments live (Knowles 2014 section 2.2): PPLL per-pixel linked "
-                      "lists (one pass, global counter, re-rendered when the pool overflows); PPPA packed "
-                      "per-pixel arrays (a count pass, a prefix sum that sizes the buffer exactly, a fill "
-                      "pass; no next pointers)",
-                      {"PPLL"},
-                      {},
-                      capture_storage_names()};
+    ParamSpec detail = ParamSpec::choice("detail", "scene size: full, or the scene file's small overrides",
+                                         {"full", "small"}, {"full"}, {"small"});
+    ParamSpec capture = ParamSpec::choice(
+        "capture",
+        "where the captured fragments live (Knowles 2014 section 2.2): PPLL per-pixel linked lists (one pass, global "
+        "counter, re-rendered when the pool overflows); PPPA packed per-pixel arrays (a count pass, a prefix sum that "
+        "sizes the buffer exactly, a fill pass; no next pointers)",
+        capture_storage_names(), {"PPLL"});
     const auto [shadow_slices, shadow_resolution] = shadow_params();
     ExactParams x = exact_params();
     std::vector<ParamSpec> ps = {scene,
@@ -222,6 +178,10 @@ class OitExperiment final : public Experiment {
   }
   std::vector<MetricSpec> metric_specs() const override {
     using T = ValueType;
+    // The techniques a metric is filled by, named from the technique table.
+    const std::string bma_auto = names_text(techniques_reading("bma_auto_cache"));
+    const std::string peeling = names_text(techniques_reading("max_layers"));
+    const std::string moments = names_text(techniques_reading("moments"));
     std::vector<MetricSpec> m = fragment_metrics();
     std::vector<MetricSpec> own = {
         {"fragments_per_s", T::Number, "fragments/s", "capture throughput: total_fragments over the capture median"},
@@ -238,9 +198,9 @@ class OitExperiment final : public Experiment {
         {"node_buffers", T::Integer, "",
          "texel buffers each node array is split into (1 unless the pool passes GL_MAX_TEXTURE_BUFFER_SIZE)"},
         {"capture_count_ms", T::Number, "ms", "PPPA: the count pass and prefix sum, median"},
-        {"bma_auto_choice", T::Text, "", "BMA-AUTO: the sort chosen per interval"},
-        {"bma_auto_source", T::Text, "", "BMA-AUTO: calibrated now or read from the cache"},
-        {"bma_auto_timings", T::Text, "", "BMA-AUTO: the calibration's medians per candidate"},
+        {"bma_auto_choice", T::Text, "", bma_auto + ": the sort chosen per interval"},
+        {"bma_auto_source", T::Text, "", bma_auto + ": calibrated now or read from the cache"},
+        {"bma_auto_timings", T::Text, "", bma_auto + ": the calibration's medians per candidate"},
         {"bad_pixels", T::Integer, "", "pixels more than the tolerance off the exact reference"},
         {"visit_errors", T::Integer, "", "pixels resolved zero or several times (BMA must resolve each once)"},
         {"tied_pixels", T::Integer, "", "pixels with fragments of equal depth (their order is by colour)"},
@@ -273,24 +233,27 @@ class OitExperiment final : public Experiment {
         {"shadow_map_bytes", T::Integer, "bytes",
          "self-shadowing: GPU memory of the map (3D texture) and of its primitive sort"},
         // depth peeling (micro/oit/peel/peel_case.cpp)
-        {"layers_peeled", T::Integer, "", "DP, DDP: layers peeled in the deepest pixel"},
-        {"peel_passes", T::Integer, "", "DP, DDP: geometry passes of one frame (two per iteration)"},
+        {"layers_peeled", T::Integer, "", peeling + ": layers peeled in the deepest pixel"},
+        {"peel_passes", T::Integer, "", peeling + ": geometry passes of one frame (two per iteration)"},
         {"peel_complete", T::Text, "",
-         "DP, DDP: yes when the occlusion query found no fragment left (exact), no when max_layers stopped it"},
+         peeling + ": yes when the occlusion query found no fragment left (exact), no when max_layers stopped it"},
         {"bytes_per_pixel", T::Number, "bytes",
          "the technique's per-pixel storage at this resolution (fragment pool, node arrays, accumulation and "
          "peeling targets; not the output image)"},
         // MBOIT and STOCHASTIC (micro/oit/moments/moments.hpp)
-        {"moment_bias", T::Number, "", "MBOIT: the moment bias used (the paper's value for the variant)"},
+        {"moment_bias", T::Number, "", moments + ": the moment bias used (the paper's value for the variant)"},
         {"moment_rebiased", T::Number, "",
-         "MBOIT: fraction of fragments whose pixel's moments were inconsistent at that bias (rounded "
-         "storage), so the reconstruction raised it tenfold (up to 1000x; the CPU model's count)"},
+         moments + ": fraction of fragments whose pixel's moments were inconsistent at that bias (rounded "
+                   "storage), so the reconstruction raised it tenfold (up to 1000x; the CPU model's count)"},
         {"model_off_channels", T::Integer, "",
-         "MBOIT, WOIT: channel values more than the tolerance from the CPU model (up to 1% allowed)"},
+         names_text(technique_names(TechniqueFamily::Moments)) +
+             ": channel values more than the tolerance from the CPU model (up to 1% allowed)"},
         {"half_blend_rounding", T::Text, "",
-         "WOIT with 16-bit coefficients: how the driver's blender rounds a sum into a half-float target, probed "
-         "at setup (nearest or toward-zero); the CPU model rounds its sums the same way"},
-        {"msaa_samples", T::Integer, "", "STOCHASTIC: MSAA samples per pass (samples_per_pixel / passes)"}};
+         names_text(techniques_reading("wavelet_bits")) +
+             " with 16-bit coefficients: how the driver's blender rounds a sum into a half-float target, probed "
+             "at setup (nearest or toward-zero); the CPU model rounds its sums the same way"},
+        {"msaa_samples", T::Integer, "",
+         "stochastic transparency's MSAA samples per pass (samples_per_pixel / passes)"}};
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());
     for (auto& x : image_error_metrics()) m.push_back(std::move(x));

@@ -125,13 +125,7 @@ class SortCase final : public CaseInstance {
         target_(ctx.width(), ctx.height(), GL_R32UI) {
     const Algorithm& a = algorithm(p.get("variant"));
     size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
-    size_t bytes = pixels * static_cast<size_t>(n_) * sizeof(Fragment);
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (static_cast<GLint64>(bytes) > max_block)
-      throw Unsupported("sort: " + std::to_string(bytes) +
-                        " bytes of fragments exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" + std::to_string(max_block) +
-                        "); use a smaller --resolution");
+    const size_t bytes = require_fragment_block(pixels * static_cast<size_t>(n_), "sort");
 
     Defines defines = {{"SORT_N", std::to_string(n_)},
                        {"SORT_N_LOG2", std::to_string(ceil_log2(n_))},
@@ -235,74 +229,53 @@ class SortCase final : public CaseInstance {
   gl::Buffer in_, out_;
 };
 
-class SortExperiment final : public Experiment {
+class SortExperiment final : public ExperimentOf<SortCase> {
  public:
-  std::string name() const override { return "sort"; }
-  std::string description() const override {
-    return "sorting n 64-bit fragments per pixel (Brüll 2018 4.5, tables A.1/A.3; Knowles 2014 RBS) in a fragment or "
-           "compute pass, local-memory vs register forms; ms per pass";
-  }
+  // 256x256: 65,536 pixels sort like the thesis' 640,000 (800x800) in the same shape, while a
+  // local-memory insertion sort of 32 reverse-ordered keys still takes ~0.1 s per pass on llvmpipe.
+  SortExperiment()
+      : ExperimentOf("sort",
+                     "sorting n 64-bit fragments per pixel (Brüll 2018 4.5, tables A.1/A.3; Knowles 2014 RBS) in a "
+                     "fragment or compute pass, local-memory vs register forms; ms per pass",
+                     {256, 256}, {128, 128}) {}
   std::vector<ParamSpec> params() const override {
-    ParamSpec variant{"variant",
-                      "the sort (shaders/sorts/<file>.glsl): insertion-naive (Listing 4.11), insertion-v1 (select-loop "
-                      "write), insertion-v2 (Listing 4.12), bubble / bubble-early (Listing 4.10), shell (4.13; "
-                      "miscompiled by llvmpipe), "
-                      "shell-offset (4.13 indexed like 4.11), shell-register (4.14), merge (bottom-up), bitonic, "
-                      "odd-even-merge (networks as loops), bitonic-network, odd-even-merge-network (the "
-                      "same networks fully unrolled, branchless compare-exchanges: sorts/network.glsl), rbs (Knowles "
-                      "Listing 5)",
-                      variant_names(),
-                      {"insertion-naive", "insertion-v2", "rbs"},
-                      variant_names()};
-    // --quick stops at 16: rbs's 32-element network JITs for minutes on llvmpipe (once; Mesa's disk cache keeps it).
-    ParamSpec n{"n",
-                "fragments per pixel",
-                {"4", "8", "12", "16", "20", "24", "28", "32"},
-                {"8", "16"},
-                {},
-                ParamSpec::Kind::Integer,
-                2,
-                32};
-    ParamSpec stage{"stage",
-                    "full-screen fragment pass or compute pass (8x8 groups)",
-                    {"fragment", "compute"},
-                    {"fragment"},
-                    {"fragment", "compute"}};
-    ParamSpec memory{"memory",
-                     "registers: loop bounds are the constant n (loops unroll, indices become constants); local: "
-                     "bounds are a uniform equal to n (the array stays dynamically indexed)",
-                     {"local", "registers"},
-                     {},
-                     {"local", "registers"}};
-    ParamSpec keys{"keys",
-                   "key distribution per pixel (CPU, from the seed)",
-                   {"random"},
-                   {},
-                   {"random", "sorted", "reverse", "duplicates", "few-distinct"}};
-    ParamSpec assign{"assign",
-                     "Table A.1: how insertion-naive writes a[j+1] = key: direct (the listing), loop (Listing 4.7), "
-                     "switch, if-else; `listing` = each variant as published",
-                     {"listing"},
-                     {},
-                     {"listing", "direct", "loop", "switch", "if-else"}};
-    ParamSpec compare{"compare",
-                      "the register networks' compare-exchange: min-max of the fragment as one 64-bit key (depth key "
-                      "high, payload low; needs GL_ARB_gpu_shader_int64) or select (one comparison, two selects)",
-                      {"min-max"},
-                      {},
-                      {"min-max", "select"}};
-    compare.only_when("variant", {"bitonic-network", "odd-even-merge-network"});
-    return {variant, n, stage, memory, keys, assign, compare};
+    return {
+        ParamSpec::choice("variant",
+                          "the sort (shaders/sorts/<file>.glsl): insertion-naive (Listing 4.11), insertion-v1 "
+                          "(select-loop write), insertion-v2 (Listing 4.12), bubble / bubble-early (Listing 4.10), "
+                          "shell (4.13; miscompiled by llvmpipe), shell-offset (4.13 indexed like 4.11), "
+                          "shell-register (4.14), merge (bottom-up), bitonic, odd-even-merge (networks as loops), "
+                          "bitonic-network, odd-even-merge-network (the same networks fully unrolled, branchless "
+                          "compare-exchanges: sorts/network.glsl), rbs (Knowles Listing 5)",
+                          variant_names(), {}, {"insertion-naive", "insertion-v2", "rbs"}),
+        // --quick stops at 16: rbs's 32-element network JITs for minutes on llvmpipe (once; Mesa's disk cache
+        // keeps it).
+        ParamSpec::integer("n", "fragments per pixel", 2, 32, {"4", "8", "12", "16", "20", "24", "28", "32"},
+                           {"8", "16"}),
+        ParamSpec::choice("stage", "full-screen fragment pass or compute pass (8x8 groups)", {"fragment", "compute"},
+                          {}, {"fragment"}),
+        ParamSpec::choice("memory",
+                          "registers: loop bounds are the constant n (loops unroll, indices become constants); "
+                          "local: bounds are a uniform equal to n (the array stays dynamically indexed)",
+                          {"local", "registers"}),
+        ParamSpec::choice("keys", "key distribution per pixel (CPU, from the seed)",
+                          {"random", "sorted", "reverse", "duplicates", "few-distinct"}, {"random"}),
+        ParamSpec::choice("assign",
+                          "Table A.1: how insertion-naive writes a[j+1] = key: direct (the listing), loop (Listing "
+                          "4.7), switch, if-else; `listing` = each variant as published",
+                          {"listing", "direct", "loop", "switch", "if-else"}, {"listing"}),
+        ParamSpec::choice("compare",
+                          "the register networks' compare-exchange: min-max of the fragment as one 64-bit key (depth "
+                          "key high, payload low; needs GL_ARB_gpu_shader_int64) or select (one comparison, two "
+                          "selects)",
+                          {"min-max", "select"}, {"min-max"})
+            .only_when("variant", {"bitonic-network", "odd-even-merge-network"})};
   }
   std::vector<MetricSpec> metric_specs() const override {
     return {{"unsorted_pixels", ValueType::Integer, "", "pixels whose keys are out of order after the sort"},
             {"changed_pixels", ValueType::Integer, "", "pixels whose multiset of (key, payload) pairs changed"},
             oit::sort_source_metric()};
   }
-  // 256x256: 65,536 pixels sort like the thesis' 640,000 (800x800) in the same shape, while a
-  // local-memory insertion sort of 32 reverse-ordered keys still takes ~0.1 s per pass on llvmpipe.
-  Resolution default_resolution() const override { return {256, 256}; }
-  Resolution quick_resolution() const override { return {128, 128}; }
   std::string unsupported_reason(const GlInfo& gl, const ParamSet& p) const override {
     const Algorithm& a = algorithm(p.get("variant"));
     if (is_network(a) && p.get("compare") == "min-max" && !gl.has_extension(kInt64))
@@ -313,9 +286,6 @@ class SortExperiment final : public Experiment {
     if (p.get("assign") != "listing" && std::string(a.variant) != "insertion-naive")
       return "assign chooses how Listing 4.11 writes a[j+1] (Table A.1); it applies to variant=insertion-naive only";
     return "";
-  }
-  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
-    return std::make_unique<SortCase>(p, ctx);
   }
 };
 

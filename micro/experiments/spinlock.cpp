@@ -165,34 +165,26 @@ class SpinlockCase final : public CaseInstance {
   std::map<std::string, std::string> metrics_;
 };
 
-class SpinlockExperiment final : public Experiment {
+class SpinlockExperiment final : public ExperimentOf<SpinlockCase> {
  public:
-  std::string name() const override { return "spinlock"; }
-  std::string description() const override {
-    return "per-pixel critical sections (Bruell 2018, Listings 4.1-4.3): naive, loop and helper-guard spinlocks "
-           "and fragment shader interlock; layers append to a per-pixel array; capped and lost updates counted";
-  }
+  SpinlockExperiment()
+      : ExperimentOf("spinlock",
+                     "per-pixel critical sections (Bruell 2018, Listings 4.1-4.3): naive, loop and helper-guard "
+                     "spinlocks and fragment shader interlock; layers append to a per-pixel array; capped and lost "
+                     "updates counted",
+                     {512, 512}, {64, 64}) {}
   std::vector<ParamSpec> params() const override {
-    ParamSpec variant{"variant",
-                      "naive (Listing 4.1), loop (4.2), helper-guard (4.3), interlock (ARB/NV/INTEL extension), "
-                      "no-release (deliberately broken: never unlocks; for tests)",
-                      {"naive", "loop", "helper-guard", "interlock"},
-                      {},
-                      {"naive", "loop", "helper-guard", "interlock", "no-release"}};
-    ParamSpec layers{"layers",    "overlapping screen-filling layers per draw, each inserting into every pixel",
-                     {"8", "32"}, {"8"},
-                     {},          ParamSpec::Kind::Integer,
-                     1,           256};
-    ParamSpec draws{"draws", "draws per repetition (the array holds layers * draws entries)",
-                    {"1"},   {},
-                    {},      ParamSpec::Kind::Integer,
-                    1,       64};
-    ParamSpec cap{"spin_cap", "attempts before a fragment gives up (its update is lost and counted)",
-                  {"65536"},  {},
-                  {},         ParamSpec::Kind::Integer,
-                  1,          1 << 30};
     // The compared parameter last: the variants of one grid point run one after another.
-    return {layers, draws, cap, variant};
+    return {ParamSpec::integer("layers", "overlapping screen-filling layers per draw, each inserting into every pixel",
+                               1, 256, {"8", "32"}, {"8"}),
+            ParamSpec::integer("draws", "draws per repetition (the array holds layers * draws entries)", 1, 64, {"1"}),
+            ParamSpec::integer("spin_cap", "attempts before a fragment gives up (its update is lost and counted)", 1,
+                               1 << 30, {"65536"}),
+            ParamSpec::choice("variant",
+                              "naive (Listing 4.1), loop (4.2), helper-guard (4.3), interlock (ARB/NV/INTEL "
+                              "extension), no-release (deliberately broken: never unlocks; for tests)",
+                              {"naive", "loop", "helper-guard", "interlock", "no-release"},
+                              {"naive", "loop", "helper-guard", "interlock"})};
   }
   std::vector<MetricSpec> metric_specs() const override {
     return {{"lost_updates", ValueType::Integer, "", "writes that did not land"},
@@ -200,8 +192,6 @@ class SpinlockExperiment final : public Experiment {
             {"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"},
             {"lock_extension", ValueType::Text, "", "the interlock extension used, or none"}};
   }
-  Resolution default_resolution() const override { return {512, 512}; }
-  Resolution quick_resolution() const override { return {64, 64}; }
   bool hang_prone() const override { return true; }
   std::string unsupported_reason(const GlInfo& gl, const ParamSet& p) const override {
     if (p.get("variant") == "interlock" && interlock_flavour(gl).empty())
@@ -210,9 +200,6 @@ class SpinlockExperiment final : public Experiment {
              gl.renderer + " has none";
     if (p.get_int("layers") * p.get_int("draws") > 2048) return "layers * draws above 2048 entries per pixel";
     return "";
-  }
-  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
-    return std::make_unique<SpinlockCase>(p, ctx);
   }
 };
 

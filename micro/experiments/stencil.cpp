@@ -162,41 +162,28 @@ class StencilCase final : public CaseInstance {
   std::string sort_source_;
 };
 
-class StencilExperiment final : public Experiment {
+class StencilExperiment final : public ExperimentOf<StencilCase> {
  public:
-  std::string name() const override { return "stencil"; }
-  std::string description() const override {
-    return "stencil-masked full-screen resolve (Bruell 2018, section 4.6, Tables A.4/A.5): resolve only where the "
-           "capture pass drew (stencil) or everywhere (no-stencil), for a band covering `coverage` % of the screen";
-  }
+  StencilExperiment()
+      : ExperimentOf("stencil",
+                     "stencil-masked full-screen resolve (Bruell 2018, section 4.6, Tables A.4/A.5): resolve only "
+                     "where the capture pass drew (stencil) or everywhere (no-stencil), for a band covering "
+                     "`coverage` % of the screen",
+                     {800, 800}, {128, 128}) {}  // the thesis's
   std::vector<ParamSpec> params() const override {
-    ParamSpec variant{"variant",
-                      "no-stencil: resolve every pixel; stencil: capture writes a stencil mask, the "
-                      "resolve runs where it is 1 (Listing 4.15)",
-                      {"no-stencil", "stencil"},
-                      {},
-                      {"no-stencil", "stencil"}};
-    ParamSpec coverage{"coverage",
-                       "percent of the screen's rows that receive transparent fragments",
-                       {"1", "10", "50", "100"},
-                       {},
-                       {},
-                       ParamSpec::Kind::Integer,
-                       1,
-                       100};
-    ParamSpec resolve{"resolve",
-                      "blend: composite the nodes in storage order (MLAB, Table A.4); sort: insertion "
-                      "sort by depth first (UMLAB, Table A.5)",
-                      {"blend", "sort"},
-                      {"blend"},
-                      {"blend", "sort"}};
-    ParamSpec nodes{"nodes", "nodes per pixel that the resolve reads", {"8"}, {"4"}, {}, ParamSpec::Kind::Integer, 1,
-                    32};
-    ParamSpec layers{
-        "layers", "transparent layers per covered pixel (at most nodes)", {"4"}, {"4"}, {}, ParamSpec::Kind::Integer, 1,
-        32};
     // The compared parameter last: stencil and no-stencil of one grid point are interleaved together.
-    return {coverage, resolve, nodes, layers, variant};
+    return {ParamSpec::integer("coverage", "percent of the screen's rows that receive transparent fragments", 1, 100,
+                               {"1", "10", "50", "100"}),
+            ParamSpec::choice("resolve",
+                              "blend: composite the nodes in storage order (Table A.4); sort: insertion sort "
+                              "by depth first (Table A.5)",
+                              {"blend", "sort"}, {}, {"blend"}),
+            ParamSpec::integer("nodes", "nodes per pixel that the resolve reads", 1, 32, {"8"}, {"4"}),
+            ParamSpec::integer("layers", "transparent layers per covered pixel (at most nodes)", 1, 32, {"4"}, {"4"}),
+            ParamSpec::choice("variant",
+                              "no-stencil: resolve every pixel; stencil: capture writes a stencil mask, the resolve "
+                              "runs where it is 1 (Listing 4.15)",
+                              {"no-stencil", "stencil"})};
   }
   std::vector<MetricSpec> metric_specs() const override {
     return {{"mismatched_pixels", ValueType::Integer, "", "pixels that differ from the CPU reference"},
@@ -204,15 +191,10 @@ class StencilExperiment final : public Experiment {
             {"covered_pixels", ValueType::Integer, "", "pixels inside the coverage"},
             oit::sort_source_metric()};
   }
-  Resolution default_resolution() const override { return {800, 800}; }  // the thesis's
-  Resolution quick_resolution() const override { return {128, 128}; }
   std::string unsupported_reason(const GlInfo&, const ParamSet& p) const override {
     if (p.get_int("layers") > p.get_int("nodes"))
       return "layers=" + p.get("layers") + " exceeds nodes=" + p.get("nodes") + " (one node per layer)";
     return "";
-  }
-  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
-    return std::make_unique<StencilCase>(p, ctx);
   }
 };
 

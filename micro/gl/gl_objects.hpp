@@ -52,35 +52,20 @@ using Query = Handle<delete_query>;
 using Program = Handle<delete_program>;
 using Shader = Handle<delete_shader>;
 
-inline Buffer make_buffer() {
+// One object from a glCreate* entry point, which takes its leading arguments (a texture's or a
+// query's target), a count and where to write the names.
+template <class Object, class Create, class... Leading>
+Object create_one(Create create, Leading... leading) {
   GLuint id = 0;
-  glCreateBuffers(1, &id);
-  return Buffer(id);
+  create(leading..., 1, &id);
+  return Object(id);
 }
-inline Texture make_texture(GLenum target) {
-  GLuint id = 0;
-  glCreateTextures(target, 1, &id);
-  return Texture(id);
-}
-inline Framebuffer make_framebuffer() {
-  GLuint id = 0;
-  glCreateFramebuffers(1, &id);
-  return Framebuffer(id);
-}
-inline Renderbuffer make_renderbuffer() {
-  GLuint id = 0;
-  glCreateRenderbuffers(1, &id);
-  return Renderbuffer(id);
-}
-inline VertexArray make_vertex_array() {
-  GLuint id = 0;
-  glCreateVertexArrays(1, &id);
-  return VertexArray(id);
-}
-inline Query make_query(GLenum target) {
-  GLuint id = 0;
-  glCreateQueries(target, 1, &id);
-  return Query(id);
-}
+
+inline Buffer make_buffer() { return create_one<Buffer>(glCreateBuffers); }
+inline Texture make_texture(GLenum target) { return create_one<Texture>(glCreateTextures, target); }
+inline Framebuffer make_framebuffer() { return create_one<Framebuffer>(glCreateFramebuffers); }
+inline Renderbuffer make_renderbuffer() { return create_one<Renderbuffer>(glCreateRenderbuffers); }
+inline VertexArray make_vertex_array() { return create_one<VertexArray>(glCreateVertexArrays); }
+inline Query make_query(GLenum target) { return create_one<Query>(glCreateQueries, target); }
 
 }  // namespace oitbench::gl

@@ -82,6 +82,21 @@ std::string preamble(const std::string& version, const Defines& defines) {
   return p;
 }
 
+// Whether a shader's compile or a program's link (`status`) failed; if so, `log` gets its info log.
+// Get and GetLog are the object's glGet*iv and glGet*InfoLog.
+template <class Get, class GetLog>
+bool failed(GLuint object, GLenum status, Get get, GetLog get_log, std::string& log) {
+  GLint ok = 0;
+  get(object, status, &ok);
+  if (ok) return false;
+  GLint len = 0;
+  get(object, GL_INFO_LOG_LENGTH, &len);
+  log.assign(static_cast<size_t>(std::max(len, 1)), '\0');
+  get_log(object, len, nullptr, log.data());
+  log.resize(std::strlen(log.c_str()));
+  return true;
+}
+
 }  // namespace
 
 ShaderLibrary::ShaderLibrary(std::filesystem::path root, std::string version)
@@ -157,30 +172,17 @@ gl::Program ShaderLibrary::compile_and_link(const std::vector<ShaderStage>& stag
     const char* text = src.text.c_str();
     glShaderSource(sh.get(), 1, &text, nullptr);
     glCompileShader(sh.get());
-    GLint ok = 0;
-    glGetShaderiv(sh.get(), GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      GLint len = 0;
-      glGetShaderiv(sh.get(), GL_INFO_LOG_LENGTH, &len);
-      std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
-      glGetShaderInfoLog(sh.get(), len, nullptr, log.data());
-      log.resize(std::strlen(log.c_str()));
+    std::string log;
+    if (failed(sh.get(), GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, log))
       throw ShaderError("compile error in shaders/" + st.path + " with defines [" + format_defines(defines) + "]:\n" +
                         map_shader_log(log, src));
-    }
     glAttachShader(program.get(), sh.get());
     shaders.push_back(std::move(sh));
   }
   if (!cache_dir_.empty()) glProgramParameteri(program.get(), GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
   glLinkProgram(program.get());
-  GLint ok = 0;
-  glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
-  if (!ok) {
-    GLint len = 0;
-    glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &len);
-    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
-    glGetProgramInfoLog(program.get(), len, nullptr, log.data());
-    log.resize(std::strlen(log.c_str()));
+  std::string log;
+  if (failed(program.get(), GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, log)) {
     std::string names;
     for (const auto& st : stages) names += (names.empty() ? "" : " + ") + ("shaders/" + st.path);
     throw ShaderError("link error in " + names + " with defines [" + format_defines(defines) + "]:\n" + log);

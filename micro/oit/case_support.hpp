@@ -14,6 +14,10 @@
 
 namespace oitbench::oit {
 
+// Tries a fragment's per-pixel spinlock insertion makes before it gives up (the SPIN_CAP define of
+// the approximate techniques' and SLAB's insertions; the gave-ups are counted as capped_updates).
+inline constexpr int kSpinCap = 1 << 16;
+
 // A number in a reason or a log line: six significant digits.
 inline std::string fmt(double v) {
   std::ostringstream s;

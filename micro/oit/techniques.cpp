@@ -283,6 +283,22 @@ std::string techniques_description() {
   return out;
 }
 
+std::string names_text(const std::vector<std::string>& names) { return joined(names); }
+
+std::string oit_description() {
+  const auto names = [](F family) { return joined(technique_names(family)); };
+  return "exact OIT (Knowles 2013 BMA, 2014 RBS): fragments captured from a scene file into per-pixel linked lists "
+         "(PPLL) or packed per-pixel arrays (PPPA), resolved by " +
+         names(F::Exact) + "; validated against a double-precision CPU compositor. Approximate OIT (Bruell 2018: " +
+         names(F::Approximate) + "; Muenstermann 2018, Aizenshtein 2022: " + names(F::Moments) +
+         "; Enderton 2010: " + names(F::Stochastic) +
+         ") is validated against each technique's own CPU model, its error vs the exact image reported as data. "
+         "Depth peeling (Everitt 2001, Bavoil & Myers 2008: " +
+         names(F::Peel) +
+         ") is exact when it peels every layer, validated against a CPU model of the layers it peeled when "
+         "max_layers stops it. Each technique's family, resolve and parameters: oitbench list --techniques";
+}
+
 std::string techniques_json() {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const auto& t : techniques()) {

@@ -66,6 +66,10 @@ std::string reference_label(TechniqueReference reference);
 // What the `technique` parameter's description says, from the table: the exact resolves by scheme and
 // sort, then each other family's techniques by name.
 std::string techniques_description();
+// "DP, DDP": technique names joined for a text that names them (techniques_reading(param), technique_names(family)).
+std::string names_text(const std::vector<std::string>& names);
+// The oit experiment's description, its techniques named by family from the table.
+std::string oit_description();
 // The table as the JSON that `oitbench list --techniques --json` prints (scripts/techniques.json).
 std::string techniques_json();
 

@@ -35,12 +35,22 @@
 
 namespace oitbench::viewer {
 
-const char* key_help() {
+std::string key_help() {
+  // B's pairs and M's node counts as the technique table has them.
+  std::vector<std::string> sorts;
+  for (const auto& t : oit::techniques())
+    if (t.scheme == oit::ResolveScheme::Base && oit::bma_twin(t)) sorts.push_back(t.sort);
+  const std::string base = oit::scheme_label(oit::ResolveScheme::Base),
+                    bma = oit::scheme_label(oit::ResolveScheme::Bma);
   return "  W A S D     move (forward, left, back, right); Q / E down / up; shift: 4x faster\n"
          "  left drag   look around; scroll: slower / faster\n"
          "  T / shift+T next / previous technique (all of the oit experiment's, exact and approximate)\n"
-         "  B           BASE-X <-> BMA-X (IS, IMS, RBS-L)\n"
-         "  M / shift+M MAX_FRAGS x2 / /2 (below 1: auto); nodes for MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT\n"
+         "  B           " +
+         base + "-X <-> " + bma + "-X (" + oit::names_text(sorts) +
+         ")\n"
+         "  M / shift+M MAX_FRAGS x2 / /2 (below 1: auto); nodes for " +
+         oit::names_text(oit::techniques_reading("nodes")) +
+         "\n"
          "  C           next capture storage (the oit parameter 'capture': PPLL linked lists, PPPA packed arrays)\n"
          "  Z           depth complexity in false colour (blue 1 -> green -> red at the peak, log scale)\n"
          "  P           screenshot (--screenshot PATH, else oitbench-SCENE-TECHNIQUE-N.png)\n"

@@ -31,7 +31,7 @@ struct ViewerOptions {
 };
 
 // The key table (for --help and the README).
-const char* key_help();
+std::string key_help();
 
 // Opens the window and runs until Esc, the window closes, or `frames` frames. Returns the exit code:
 // 0, or 1 when a case could not be built or a view/screenshot not saved along the way. Throws

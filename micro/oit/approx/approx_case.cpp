@@ -36,51 +36,28 @@ namespace {
 // The GPU and its model differ by float rounding (fused multiply-adds, exp/log/pow), and MLAB's
 // RGBA8 nodes can round the other way at a half step and carry that through later merges.
 constexpr double kModelTolerance = 3.0 / 255.0;
-constexpr int kSpinCap = 1 << 16;
 
 }  // namespace
 
 std::vector<ParamSpec> approx_params() {
-  using K = ParamSpec::Kind;
   // Scoped to the techniques that read them by the technique table (micro/oit/techniques.cpp).
   return {
-      {"nodes",
-       "nodes per pixel of MLAB, UMLAB, AT, HAT, UAT, UHAT, LAAT (the thesis: 4-16); HT: its core's fragments",
-       {"8"},
-       {},
-       {},
-       K::Integer,
-       2,
-       64},
-      {"storage",
-       "node storage of the per-pixel array techniques (shaders/storage/)",
-       {"ssbo"},
-       {},
-       {"ssbo", "texture3d", "interleaved"}},
-      {"wboit_weight",
-       "WBOIT depth weight: none (weighted average), eq7 (view distance), eq10 (window depth)",
-       {"eq7"},
-       {},
-       {"none", "eq7", "eq10"}},
-      {"sync",
-       "per-pixel insertion: spinlock (Listing 4.3, capped) or interlock (ARB_fragment_shader_interlock)",
-       {"spinlock"},
-       {},
-       {"spinlock", "interlock"}},
-      {"guard",
-       "numeric guards of the AT family and WBOIT (off: the deliberately unguarded variant the hard-case "
-       "tests use)",
-       {"on"},
-       {},
-       {"on", "off"}},
-      {"flicker_runs",
-       "frames kept for the flicker metric (per-pixel variance across runs; 0: off)",
-       {"4"},
-       {},
-       {},
-       K::Integer,
-       0,
-       64},
+      ParamSpec::integer("nodes",
+                         "nodes per pixel (the thesis: 4-16); for hybrid transparency, the fragments of its core", 2,
+                         64, {"8"}),
+      ParamSpec::choice("storage", "node storage of the per-pixel array techniques (shaders/storage/)",
+                        {"ssbo", "texture3d", "interleaved"}, {"ssbo"}),
+      ParamSpec::choice(
+          "wboit_weight",
+          "depth weight of the weighted blend: none (weighted average), eq7 (view distance), eq10 (window depth)",
+          {"none", "eq7", "eq10"}, {"eq7"}),
+      ParamSpec::choice(
+          "sync", "per-pixel insertion: spinlock (Listing 4.3, capped) or interlock (ARB_fragment_shader_interlock)",
+          {"spinlock", "interlock"}, {"spinlock"}),
+      ParamSpec::choice("guard", "numeric guards (off: the deliberately unguarded variant the hard-case tests use)",
+                        {"on", "off"}, {"on"}),
+      ParamSpec::integer("flicker_runs", "frames kept for the flicker metric (per-pixel variance across runs; 0: off)",
+                         0, 64, {"4"}),
   };
 }
 namespace {
@@ -180,7 +157,7 @@ class ApproxCase final : public OitCase {
           {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
       bytes_per_pixel_ = 16.0 + 4.0;
     } else {
-      if (tech == T::GlobalSort) build_global_sort(ctx, d, vp);
+      if (tech == T::GlobalSort) build_global_sort(ctx, p.get("technique"), d, vp);
       blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
     }
@@ -189,10 +166,10 @@ class ApproxCase final : public OitCase {
   // GLOBAL-SORT (Kerbl et al. 2023): every frame a compute pass keys each splat by its centre's view depth
   // (shaders/splats/keys.comp) and the primitive radix sort orders them back to front; the blend pass then
   // draws the splats in that order (SPLAT_ORDERED) with "over" blending, as `unsorted` draws them in theirs.
-  void build_global_sort(CaseContext& ctx, Defines& d, const glm::mat4& vp) {
+  void build_global_sort(CaseContext& ctx, const std::string& technique, Defines& d, const glm::mat4& vp) {
     const GpuSplats* splats = passes_.splats();
     if (!splats)
-      throw Unsupported("GLOBAL-SORT sorts splats: scene '" + scene_.name + "' (" + scene_.path + ") has none");
+      throw Unsupported(technique + " sorts splats: scene '" + scene_.name + "' (" + scene_.path + ") has none");
     d.push_back({"SPLAT_ORDERED", ""});
     sort_ = std::make_unique<RadixSort>(ctx, splats->size(), 32);
     keys_ = ctx.build({{GL_COMPUTE_SHADER, "splats/keys.comp"}}, {});

@@ -2,7 +2,11 @@
 // The papers' 64-bit fragment as the shaders see it (uvec2): x = the float depth's bits,
 // y = RGBA8 colour. Shared by every experiment that uploads or validates fragments.
 #include <bit>
+#include <cstddef>
 #include <cstdint>
+#include <string>
+
+#include "core/registry.hpp"
 
 namespace oitbench {
 
@@ -41,6 +45,20 @@ inline uint16_t float_to_half(float f) {
   uint32_t h = (e << 10) | (man >> 13), rest = man & 0x1fffu;
   if (rest > 0x1000u || (rest == 0x1000u && (h & 1u))) ++h;  // may carry into the exponent: still right
   return static_cast<uint16_t>(sign | h);
+}
+
+// The bytes of `count` fragments in one shader storage block; Unsupported where they exceed
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE ("EXPERIMENT: N bytes of fragments exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+// (M); use a smaller --resolution").
+inline std::size_t require_fragment_block(std::size_t count, const std::string& experiment) {
+  std::size_t bytes = count * sizeof(PackedFragment);
+  GLint64 max_block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  if (static_cast<GLint64>(bytes) > max_block)
+    throw Unsupported(experiment + ": " + std::to_string(bytes) +
+                      " bytes of fragments exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" + std::to_string(max_block) +
+                      "); use a smaller --resolution");
+  return bytes;
 }
 
 inline int ceil_log2(int n) {

@@ -4,6 +4,7 @@
 // compositor working on the same fragments read back from the GPU.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -51,12 +52,6 @@ constexpr int kFirstInterval = 8;  // BMA intervals: 1-8, 9-16, 17-32, ... (Know
 // Pool sizings a run keeps for its cases to share (each a few numbers): more than the views of a preset.
 constexpr size_t kSharedPoolSizings = 64;
 
-unsigned next_pow2(unsigned v) {
-  unsigned p = 1;
-  while (p < v) p <<= 1;
-  return p;
-}
-
 class ExactCase final : public OitCase {
  public:
   ExactCase(const ParamSet& p, CaseContext& ctx)
@@ -92,8 +87,8 @@ class ExactCase final : public OitCase {
     // before anything is compiled.
     const std::shared_ptr<const PoolSizing> sizing = size_pool(p, ctx);
     long long forced = p.get_int("max_frags");
-    max_frags_ =
-        forced > 0 ? static_cast<unsigned>(forced) : std::max<unsigned>(kFirstInterval, next_pow2(sizing->peak_depth));
+    max_frags_ = forced > 0 ? static_cast<unsigned>(forced)
+                            : std::max<unsigned>(kFirstInterval, std::bit_ceil(sizing->peak_depth));
     if (native_) return;
     if (compute_) {
       auto [gx, gy] = parse_group(p.get("cs_group"));

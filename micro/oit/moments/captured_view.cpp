@@ -94,6 +94,7 @@ bool record_coverage(const CapturedView& view, GLuint framebuffer, int width, in
 CapturedViewCase::CapturedViewCase(const ParamSet& p, CaseContext& ctx)
     : width_(ctx.width()),
       height_(ctx.height()),
+      technique_(p.get("technique")),
       view_(capture_view(p, ctx)),
       out_(ctx.width(), ctx.height(), GL_RGBA32F),
       flicker_runs_(static_cast<int>(p.get_int("flicker_runs"))),
@@ -101,11 +102,20 @@ CapturedViewCase::CapturedViewCase(const ParamSet& p, CaseContext& ctx)
   phases_ = ctx.phase_clock();
 }
 
-bool CapturedViewCase::begin_run(PassTimer& timer) {
+void CapturedViewCase::set_view_projection(const glm::mat4& view_proj) {
+  view_.fx->set_view_projection(view_proj);
+  for (const gl::Program* prog : projected_) set_view_proj(*prog, view_proj);
+}
+
+bool CapturedViewCase::begin_run(PassTimer& timer, std::initializer_list<const gl::Program*> drawing) {
   view_.fx->run_before(timer);
-  if (view_.fx->transparency()) return true;
-  view_.fx->fill_with_backdrop(out_.framebuffer(), out_.color_texture());  // nothing transparent
-  return false;
+  if (!view_.fx->transparency()) {
+    view_.fx->fill_with_backdrop(out_.framebuffer(), out_.color_texture());  // nothing transparent
+    return false;
+  }
+  for (const gl::Program* prog : drawing) view_.fx->bind_geometry(prog->get());
+  view_.fx->bind_opaque_depth_sampler();
+  return true;
 }
 
 void CapturedViewCase::keep_frame() {
@@ -114,8 +124,24 @@ void CapturedViewCase::keep_frame() {
   if (static_cast<int>(frames_.size()) > flicker_runs_) frames_.erase(frames_.begin());
 }
 
-CapturedViewCase::ModelValidation CapturedViewCase::validate_against(const std::vector<double>& model,
-                                                                     double tolerance) {
+void CapturedViewCase::resolve_pass(PassTimer& timer, const gl::Program& resolve,
+                                    const std::function<void()>& bind_inputs) {
+  {
+    auto t = timer.pass("resolve");
+    out_.bind();
+    bind_inputs();
+    view_.fx->bind_backdrop(resolve.get());
+    glUseProgram(resolve.get());
+    quad_.draw();
+  }
+  keep_frame();
+}
+
+CapturedViewCase::ModelValidation CapturedViewCase::validate_against(
+    const std::function<std::vector<double>()>& compute_model, double tolerance) {
+  auto modelling = PhaseClock::Scope(phases_, Phase::Reference);
+  const std::vector<double> model = compute_model();
+  modelling.end();
   ModelValidation mv;
   auto& m = mv.v.metrics;
   auto reading = PhaseClock::Scope(phases_, Phase::Readback);
@@ -153,20 +179,21 @@ CapturedViewCase::ModelValidation CapturedViewCase::validate_against(const std::
   return mv;
 }
 
-void CapturedViewCase::add_model_problem(ModelValidation& mv, const std::string& model, double tolerance,
-                                         size_t allowed) {
-  if (mv.check.off <= allowed) return;
-  std::string problem = std::to_string(mv.check.off) + " channel value(s) differ from " + model + " by more than " +
-                        std::to_string(std::lround(tolerance * 255.0)) + "/255";
-  if (allowed) problem += " (" + std::to_string(allowed) + " allowed)";
-  mv.problems.push_back(problem + "; first: " + mv.check.first_off);
-}
-
-void CapturedViewCase::add_output_problems(ModelValidation& mv) {
+Validation CapturedViewCase::conclude_against(ModelValidation& mv, double tolerance, size_t allowed,
+                                              const std::string& same) const {
   if (mv.check.nonfinite)
     mv.problems.push_back(std::to_string(mv.check.nonfinite) + " non-finite channel value(s) (NaN or Inf)");
   if (mv.check.out_of_range)
     mv.problems.push_back(std::to_string(mv.check.out_of_range) + " channel value(s) outside [0, 1]");
+  if (mv.check.off > allowed) {
+    std::string problem = std::to_string(mv.check.off) + " channel value(s) differ from " + technique_ +
+                          "'s CPU model" + same + " by more than " + std::to_string(std::lround(tolerance * 255.0)) +
+                          "/255";
+    if (allowed) problem += " (" + std::to_string(allowed) + " allowed)";
+    mv.problems.push_back(problem + "; first: " + mv.check.first_off);
+  }
+  conclude(mv.v, mv.problems);
+  return mv.v;
 }
 
 }  // namespace oitbench::oit

@@ -1,5 +1,7 @@
 #pragma once
 // What MBOIT's and STOCHASTIC's cases (moments.hpp) share, written once (captured_view.cpp).
+#include <functional>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <string>
@@ -46,12 +48,19 @@ class CapturedViewCase : public OitCase {
   GLuint result_texture() override { return out_.color_texture(); }
   GLuint opaque_texture() const override { return view_.fx->opaque_texture(); }
   std::map<std::string, std::string> resolved_params() const override { return view_.fx->resolved_params(); }
+  // The effects' passes and every program of projected_ follow the camera.
+  void set_view_projection(const glm::mat4& view_proj) override;
 
  protected:
-  // run()'s start: the effects' passes; false when nothing is transparent (the image is then the backdrop).
-  bool begin_run(PassTimer& timer);
+  // run()'s start: the effects' passes; false when nothing is transparent (the image is then the
+  // backdrop). Else the programs that draw the transparent geometry this frame (`drawing`) get the
+  // geometry's bindings, and the opaque depth is bound for their test.
+  bool begin_run(PassTimer& timer, std::initializer_list<const gl::Program*> drawing);
   // run()'s end, outside the timed passes: keeps the last flicker_runs frames.
   void keep_frame();
+  // run()'s last timed pass, "resolve": `resolve` draws the full-screen triangle into out_ over the
+  // backdrop, reading what `bind_inputs` binds (the technique's sums); then keep_frame().
+  void resolve_pass(PassTimer& timer, const gl::Program& resolve, const std::function<void()>& bind_inputs);
 
   // What validate() has after the checks every model-checked case makes: the list and error metrics,
   // the model's error, bytes_per_pixel, the model check's nonfinite and model_max_diff, the flicker,
@@ -63,20 +72,23 @@ class CapturedViewCase : public OitCase {
     ModelCheck check;
     std::vector<std::string> problems;
   };
-  // `model` is computed by the caller, inside a Reference stretch of phases_.
-  ModelValidation validate_against(const std::vector<double>& model, double tolerance);
-  // Non-finite and out-of-range channels as problems (after the technique's own).
-  static void add_output_problems(ModelValidation& mv);
-  // The problem when more than `allowed` channels differ from the technique's CPU model (`model`,
-  // e.g. "MBOIT's CPU model") by more than `tolerance` (written in 255ths, as the models' tolerances are).
-  static void add_model_problem(ModelValidation& mv, const std::string& model, double tolerance, size_t allowed = 0);
+  // `model` computes the technique's CPU model of the image (inside a Reference stretch of phases_).
+  ModelValidation validate_against(const std::function<std::vector<double>()>& model, double tolerance);
+  // validate()'s end: the output's non-finite and out-of-range channels, then more than `allowed`
+  // channels off the technique's CPU model by more than `tolerance` (written in 255ths, as the models'
+  // tolerances are), as problems after the technique's own; the verdict. `same` says what the model
+  // shares with the GPU (" (same masks)"), after "TECHNIQUE's CPU model" in the message.
+  Validation conclude_against(ModelValidation& mv, double tolerance, size_t allowed = 0,
+                              const std::string& same = "") const;
 
   int width_, height_;
+  std::string technique_;  // the case's technique (the `technique` parameter), for messages
   CapturedView view_;
   RenderTarget out_;
   FullscreenTriangle quad_;
-  int bytes_ = 0;                 // per pixel
-  PhaseClock* phases_ = nullptr;  // the run's time account (core/phases.hpp); null: none
+  int bytes_ = 0;                              // per pixel
+  PhaseClock* phases_ = nullptr;               // the run's time account (core/phases.hpp); null: none
+  std::vector<const gl::Program*> projected_;  // the technique's programs that draw the scene's geometry
 
  private:
   int flicker_runs_;

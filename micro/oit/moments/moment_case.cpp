@@ -18,29 +18,20 @@ constexpr double kMomentTolerance = 4.0 / 255.0;
 
 std::vector<ParamSpec> moment_params() {
   std::vector<ParamSpec> ps = {
-      {"moments",
-       "MBOIT: real numbers stored beside the zeroth moment: power moments b1..bn, or n/2 complex "
-       "trigonometric moments (the paper's 4, 6, 8 power and 2, 3, 4 trigonometric moments)",
-       {"4"},
-       {},
-       {"4", "6", "8"}},
-      {"moment_kind",
-       "MBOIT: power moments of the log-warped depth, or trigonometric moments",
-       {"power"},
-       {},
-       {"power", "trigonometric"}},
-      {"moment_bits",
-       "MBOIT: storage of the moments, 32-bit float targets or 16-bit float (RGBA16F) ones; the paper's bias "
-       "for each",
-       {"32"},
-       {},
-       {"32", "16"}},
-      {"samples_per_pixel",
-       "STOCHASTIC, SLAB: coverage samples per pixel (STOCHASTIC: MSAA samples times passes where the driver "
-       "has fewer; SLAB: the bits of each layer's mask)",
-       {"8"},
-       {},
-       {"4", "8", "16", "32"}},
+      ParamSpec::choice("moments",
+                        "real numbers stored beside the zeroth moment: power moments b1..bn, or n/2 complex "
+                        "trigonometric moments (the paper's 4, 6, 8 power and 2, 3, 4 trigonometric moments)",
+                        {"4", "6", "8"}, {"4"}),
+      ParamSpec::choice("moment_kind", "power moments of the log-warped depth, or trigonometric moments",
+                        {"power", "trigonometric"}, {"power"}),
+      ParamSpec::choice("moment_bits",
+                        "storage of the moments, 32-bit float targets or 16-bit float (RGBA16F) ones; the "
+                        "paper's bias for each",
+                        {"32", "16"}, {"32"}),
+      ParamSpec::choice("samples_per_pixel",
+                        "coverage samples per pixel: MSAA samples times passes where the driver has fewer (stochastic "
+                        "transparency), the bits of each layer's mask (stochastic layers)",
+                        {"4", "8", "16", "32"}, {"8"}),
   };
   return ps;
 }
@@ -76,7 +67,7 @@ class MboitCase final : public CapturedViewCase {
     for (size_t i = 0; i < formats.size(); ++i) bufs.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
     glNamedFramebufferDrawBuffers(moments_fbo_.get(), static_cast<GLsizei>(bufs.size()), bufs.data());
     if (glCheckNamedFramebufferStatus(moments_fbo_.get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Unsupported("MBOIT moment_bits=" + std::to_string(s_.bits) + ": the driver cannot render to " +
+      throw Unsupported(technique_ + " moment_bits=" + std::to_string(s_.bits) + ": the driver cannot render to " +
                         (half ? "16" : "32") + "-bit float targets (framebuffer incomplete)");
     bytes_ += 16;  // the weighted colour pass's RGBA32F sum
 
@@ -88,6 +79,7 @@ class MboitCase final : public CapturedViewCase {
     blend_pass_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "moments/blend.frag"}}, d);
     resolve_ =
         ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "moments/resolve.frag"}}, d);
+    projected_ = {&moment_pass_, &blend_pass_};
     for (const gl::Program* prog : {&moment_pass_, &blend_pass_}) {
       set_view_proj(*prog, view_.view_proj);
       glProgramUniform2f(prog->get(), glGetUniformLocation(prog->get(), "nearFar"), s_.near_far.x, s_.near_far.y);
@@ -98,15 +90,8 @@ class MboitCase final : public CapturedViewCase {
     glProgramUniform1f(blend_pass_.get(), glGetUniformLocation(blend_pass_.get(), "overestimation"), s_.overestimation);
   }
 
-  void set_view_projection(const glm::mat4& view_proj) override {
-    view_.fx->set_view_projection(view_proj);
-    for (const gl::Program* prog : {&moment_pass_, &blend_pass_}) set_view_proj(*prog, view_proj);
-  }
-
   void run(PassTimer& timer) override {
-    if (!begin_run(timer)) return;
-    for (const gl::Program* prog : {&moment_pass_, &blend_pass_}) view_.fx->bind_geometry(prog->get());
-    view_.fx->bind_opaque_depth_sampler();
+    if (!begin_run(timer, {&moment_pass_, &blend_pass_})) return;
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     {
@@ -132,39 +117,27 @@ class MboitCase final : public CapturedViewCase {
       view_.mesh->draw();
       glDisable(GL_BLEND);
     }
-    {
-      auto t = timer.pass("resolve");
-      out_.bind();
+    resolve_pass(timer, resolve_, [&] {
       bind_moments();
       glBindTextureUnit(MOMENTS_ACCUM_UNIT, accum_.color_texture());
-      view_.fx->bind_backdrop(resolve_.get());
-      glUseProgram(resolve_.get());
-      quad_.draw();
-    }
-    keep_frame();
+    });
   }
 
   Validation validate() override {
     size_t rebiased = 0;
-    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    std::vector<double> model = mboit_model(view_.fragments, view_.backdrop, s_, &rebiased);
-    referencing.end();
-    ModelValidation mv = validate_against(model, kMomentTolerance);
+    ModelValidation mv =
+        validate_against([&] { return mboit_model(view_.fragments, view_.backdrop, s_, &rebiased); }, kMomentTolerance);
     auto& m = mv.v.metrics;
     const size_t total = mv.stats.total_fragments;
     m["moment_bias"] = fmt(s_.bias);
     m["moment_rebiased"] = fmt(total ? static_cast<double>(rebiased) / total : 0.0);
     m["model_off_channels"] = std::to_string(mv.check.off);
-    add_output_problems(mv);
     // The moment systems are ill-conditioned by design (the bias keeps them just positive
     // definite): where a pixel's moments sit at that edge the GPU's float solve and the model's
     // double one can part by more than the tolerance (measured: 0.3% of the channels of smoke with
     // 4 power moments in 32 bits), and with 16-bit sums they can disagree on raising the bias. Up
     // to 1% of the channels may differ; the wrong-result fault changes 12.5% of the pixels.
-    const size_t allowed = mv.rgb.size() / 100;
-    add_model_problem(mv, "MBOIT's CPU model", kMomentTolerance, allowed);
-    conclude(mv.v, mv.problems);
-    return mv.v;
+    return conclude_against(mv, kMomentTolerance, mv.rgb.size() / 100);
   }
 
  private:

@@ -38,22 +38,15 @@ glm::dvec4 unpack(unsigned c) {
 
 std::vector<ParamSpec> peel_params() {
   std::vector<ParamSpec> ps = {
-      {"max_layers",
-       "DP, DDP: layers peeled at most (DDP peels two per iteration: rounded up to even); 0 peels until "
-       "the occlusion query finds no fragment left (exact)",
-       {"0"},
-       {},
-       {},
-       ParamSpec::Kind::Integer,
-       0,
-       65536},
-      {"tie_rule",
-       "DP, DDP: what orders fragments of equal depth: depth-colour peels (depth, RGBA8 colour) pairs, the "
-       "exact composite's order; depth is classic peeling by depth alone, which loses all but one "
-       "fragment of each depth",
-       {"depth-colour"},
-       {},
-       {"depth-colour", "depth"}},
+      ParamSpec::integer("max_layers",
+                         "layers peeled at most (rounded up to even where an iteration peels two, dual peeling); 0 "
+                         "peels until the occlusion query finds no fragment left (exact)",
+                         0, 65536, {"0"}),
+      ParamSpec::choice(
+          "tie_rule",
+          "what orders fragments of equal depth: depth-colour peels (depth, RGBA8 colour) pairs, the exact "
+          "composite's order; depth is classic peeling by depth alone, which loses all but one fragment of each depth",
+          {"depth-colour", "depth"}, {"depth-colour"}),
   };
   return ps;
 }

@@ -20,9 +20,12 @@ std::string sort_label(ResolveSort sort) {
 }
 
 ResolveSort parse_sort_label(const std::string& label) {
-  for (auto s : {ResolveSort::IS, ResolveSort::IMS, ResolveSort::RBS_L, ResolveSort::RBS_G})
+  std::string valid;
+  for (auto s : {ResolveSort::IS, ResolveSort::IMS, ResolveSort::RBS_L, ResolveSort::RBS_G}) {
     if (sort_label(s) == label) return s;
-  throw std::invalid_argument("unknown resolve sort '" + label + "' (IS, IMS, RBS-L, RBS-G)");
+    valid += (valid.empty() ? "" : ", ") + sort_label(s);
+  }
+  throw std::invalid_argument("unknown resolve sort '" + label + "' (" + valid + ")");
 }
 
 const std::vector<std::string>& block_sort_names() {

@@ -16,17 +16,14 @@ namespace {
 // to the other 8-bit neighbour in float than in the model's float (fused or not): one merged colour
 // off by 1/255 moves a pixel by less than that.
 constexpr double kSlabTolerance = 2.0 / 255.0;
-constexpr int kSpinCap = 1 << 16;
 
 }  // namespace
 
 std::vector<ParamSpec> slab_params() {
-  return {{"slab_layers",
-           "SLAB: layers a pixel keeps (depth, coverage mask, colour); as many as samples_per_pixel never merge "
-           "(stochastic transparency's estimate), fewer merge the two farthest",
-           {"4"},
-           {},
-           {"1", "2", "4", "8"}}};
+  return {ParamSpec::choice("slab_layers",
+                            "layers a pixel keeps (depth, coverage mask, colour); as many as samples_per_pixel "
+                            "never merge (stochastic transparency's estimate), fewer merge the two farthest",
+                            {"1", "2", "4", "8"}, {"4"})};
 }
 
 namespace {
@@ -57,6 +54,7 @@ class SlabCase final : public CapturedViewCase {
     record_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/coverage.frag"}}, d);
     insert_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "slab/insert.frag"}}, d);
     resolve_ = ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "slab/resolve.frag"}}, d);
+    projected_ = {&record_, &insert_};
     for (const gl::Program* prog : {&insert_, &resolve_})
       glProgramUniform1i(prog->get(), glGetUniformLocation(prog->get(), "width"), width_);
     set_view_projection(view_.view_proj);
@@ -64,15 +62,8 @@ class SlabCase final : public CapturedViewCase {
     fragments_lost_ = !record_coverage(view_, out_.framebuffer(), width_, height_, record_, fragments_);
   }
 
-  void set_view_projection(const glm::mat4& view_proj) override {
-    view_.fx->set_view_projection(view_proj);
-    for (const gl::Program* prog : {&record_, &insert_}) set_view_proj(*prog, view_proj);
-  }
-
   void run(PassTimer& timer) override {
-    if (!begin_run(timer)) return;
-    view_.fx->bind_geometry(insert_.get());
-    view_.fx->bind_opaque_depth_sampler();
+    if (!begin_run(timer, {&insert_})) return;
     setup_.frame_seed = stochastic_frame_seed(run_seed_, frame_++);
     glProgramUniform1ui(insert_.get(), glGetUniformLocation(insert_.get(), "frameSeed"), setup_.frame_seed);
     glDisable(GL_CULL_FACE);
@@ -93,32 +84,20 @@ class SlabCase final : public CapturedViewCase {
       glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    {
-      auto t = timer.pass("resolve");
-      out_.bind();
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLAB_LAYERS_BINDING, layers_.get());
-      view_.fx->bind_backdrop(resolve_.get());
-      glUseProgram(resolve_.get());
-      quad_.draw();
-    }
-    keep_frame();
+    resolve_pass(timer, resolve_,
+                 [&] { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SLAB_LAYERS_BINDING, layers_.get()); });
   }
 
   Validation validate() override {
-    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    std::vector<double> model = slab_model(fragments_, view_.backdrop, setup_);
-    referencing.end();
-    ModelValidation mv = validate_against(model, kSlabTolerance);
+    ModelValidation mv =
+        validate_against([&] { return slab_model(fragments_, view_.backdrop, setup_); }, kSlabTolerance);
     GLuint capped = 0;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(stats_.get(), 0, sizeof(GLuint), &capped);
     mv.v.metrics["capped_updates"] = std::to_string(capped);
     if (fragments_lost_) mv.problems.push_back("the fragment record lost fragments");
     if (capped) mv.problems.push_back(std::to_string(capped) + " insertion(s) gave up on the spinlock (lost)");
-    add_output_problems(mv);
-    add_model_problem(mv, "SLAB's CPU model (same masks, same insertions)", kSlabTolerance);
-    conclude(mv.v, mv.problems);
-    return mv.v;
+    return conclude_against(mv, kSlabTolerance, 0, " (same masks, same insertions)");
   }
 
  private:

@@ -37,10 +37,10 @@ class StochasticCase final : public CapturedViewCase {
           std::find(depth.begin(), depth.end(), c) != depth.end())
         best = std::max(best, static_cast<int>(c));
     if (best == 0)
-      throw Unsupported(
-          "STOCHASTIC needs multisampled RGBA32F and DEPTH_COMPONENT32F textures with a sample count "
-          "dividing " +
-          std::to_string(samples) + "; the driver has none");
+      throw Unsupported(technique_ +
+                        " needs multisampled RGBA32F and DEPTH_COMPONENT32F textures with a sample count "
+                        "dividing " +
+                        std::to_string(samples) + "; the driver has none");
     setup_ = {width_, height_, best, samples / best, 0};
 
     colour_ = gl::make_texture(GL_TEXTURE_2D_MULTISAMPLE);
@@ -51,7 +51,8 @@ class StochasticCase final : public CapturedViewCase {
     glNamedFramebufferTexture(msaa_.get(), GL_COLOR_ATTACHMENT0, colour_.get(), 0);
     glNamedFramebufferTexture(msaa_.get(), GL_DEPTH_ATTACHMENT, depth_.get(), 0);
     if (glCheckNamedFramebufferStatus(msaa_.get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Unsupported("STOCHASTIC: the " + std::to_string(best) + "x MSAA framebuffer is incomplete on this driver");
+      throw Unsupported(technique_ + ": the " + std::to_string(best) +
+                        "x MSAA framebuffer is incomplete on this driver");
     bytes_ = best * (16 + 4) + 4;
 
     Defines d = view_.fx->geometry_defines();
@@ -65,19 +66,13 @@ class StochasticCase final : public CapturedViewCase {
     alpha_ = ctx.build({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "stochastic/alpha.frag"}}, d);
     resolve_ =
         ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "stochastic/resolve.frag"}}, d);
+    projected_ = {&coverage_, &depth_pass_, &accumulate_, &alpha_};
     set_view_projection(view_.view_proj);
     record_coverage();
   }
 
-  void set_view_projection(const glm::mat4& view_proj) override {
-    view_.fx->set_view_projection(view_proj);
-    for (const gl::Program* prog : {&coverage_, &depth_pass_, &accumulate_, &alpha_}) set_view_proj(*prog, view_proj);
-  }
-
   void run(PassTimer& timer) override {
-    if (!begin_run(timer)) return;
-    for (const gl::Program* prog : {&depth_pass_, &accumulate_, &alpha_}) view_.fx->bind_geometry(prog->get());
-    view_.fx->bind_opaque_depth_sampler();
+    if (!begin_run(timer, {&depth_pass_, &accumulate_, &alpha_})) return;
     setup_.frame_seed = stochastic_frame_seed(run_seed_, frame_++);
     glDisable(GL_CULL_FACE);
     {
@@ -124,29 +119,19 @@ class StochasticCase final : public CapturedViewCase {
       view_.mesh->draw();
       glDisable(GL_BLEND);
     }
-    {
-      auto t = timer.pass("resolve");
-      out_.bind();
+    resolve_pass(timer, resolve_, [&] {
       glBindTextureUnit(STOCHASTIC_ACCUM_UNIT, colour_.get());
       glBindTextureUnit(STOCHASTIC_TOTAL_UNIT, total_.color_texture());
-      view_.fx->bind_backdrop(resolve_.get());
-      glUseProgram(resolve_.get());
-      quad_.draw();
-    }
-    keep_frame();
+    });
   }
 
   Validation validate() override {
-    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    std::vector<double> model = stochastic_model(coverage_fragments_, view_.fragments, view_.backdrop, setup_);
-    referencing.end();
-    ModelValidation mv = validate_against(model, kStochasticTolerance);
+    ModelValidation mv =
+        validate_against([&] { return stochastic_model(coverage_fragments_, view_.fragments, view_.backdrop, setup_); },
+                         kStochasticTolerance);
     mv.v.metrics["msaa_samples"] = std::to_string(setup_.msaa_samples);
     if (coverage_lost_) mv.problems.push_back("the MSAA coverage record lost fragments");
-    add_output_problems(mv);
-    add_model_problem(mv, "STOCHASTIC's CPU model (same masks)", kStochasticTolerance);
-    conclude(mv.v, mv.problems);
-    return mv.v;
+    return conclude_against(mv, kStochasticTolerance, 0, " (same masks)");
   }
 
  private:

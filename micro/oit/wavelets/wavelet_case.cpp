@@ -19,23 +19,17 @@ constexpr double kWaveletTolerance = 2.0 / 255.0;
 
 std::vector<ParamSpec> wavelet_params() {
   return {
-      {"wavelet_coeffs",
-       "WOIT: coefficients per pixel: the Haar scaling function (the total absorbance) and the wavelets of "
-       "log2(N) levels, i.e. the absorbance in N depth cells",
-       {"16"},
-       {},
-       {"8", "16", "32"}},
-      {"wavelet_basis",
-       "WOIT: the basis the absorbance is projected onto: haar (the paper's wavelets) or cosine (a smooth "
-       "comparison, not a wavelet: sqrt(2) cos(pi k x), the community code's Fourier basis in half-range form)",
-       {"haar"},
-       {},
-       {"haar", "cosine"}},
-      {"wavelet_bits",
-       "WOIT: storage of the coefficients, RGBA32F or RGBA16F layers (4 coefficients each)",
-       {"32"},
-       {},
-       {"32", "16"}},
+      ParamSpec::choice("wavelet_coeffs",
+                        "coefficients per pixel: the Haar scaling function (the total absorbance) and the "
+                        "wavelets of log2(N) levels, i.e. the absorbance in N depth cells",
+                        {"8", "16", "32"}, {"16"}),
+      ParamSpec::choice(
+          "wavelet_basis",
+          "the basis the absorbance is projected onto: haar (the paper's wavelets) or cosine (a smooth "
+          "comparison, not a wavelet: sqrt(2) cos(pi k x), the community code's Fourier basis in half-range form)",
+          {"haar", "cosine"}, {"haar"}),
+      ParamSpec::choice("wavelet_bits", "storage of the coefficients, RGBA32F or RGBA16F layers (4 coefficients each)",
+                        {"32", "16"}, {"32"}),
   };
 }
 
@@ -61,6 +55,7 @@ class WoitCase final : public CapturedViewCase {
     blend_pass_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "wavelets/blend.frag"}}, d);
     resolve_ =
         ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "wavelets/resolve.frag"}}, d);
+    projected_ = {&coeff_pass_, &blend_pass_};
     for (const gl::Program* prog : {&coeff_pass_, &blend_pass_}) {
       set_view_proj(*prog, view_.view_proj);
       glProgramUniform2f(prog->get(), glGetUniformLocation(prog->get(), "nearFar"), s_.near_far.x, s_.near_far.y);
@@ -69,15 +64,8 @@ class WoitCase final : public CapturedViewCase {
     }
   }
 
-  void set_view_projection(const glm::mat4& view_proj) override {
-    view_.fx->set_view_projection(view_proj);
-    for (const gl::Program* prog : {&coeff_pass_, &blend_pass_}) set_view_proj(*prog, view_proj);
-  }
-
   void run(PassTimer& timer) override {
-    if (!begin_run(timer)) return;
-    for (const gl::Program* prog : {&coeff_pass_, &blend_pass_}) view_.fx->bind_geometry(prog->get());
-    view_.fx->bind_opaque_depth_sampler();
+    if (!begin_run(timer, {&coeff_pass_, &blend_pass_})) return;
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     const float zero[4] = {0, 0, 0, 0};
@@ -100,33 +88,21 @@ class WoitCase final : public CapturedViewCase {
       view_.mesh->draw();
       glDisable(GL_BLEND);
     }
-    {
-      auto t = timer.pass("resolve");
-      out_.bind();
+    resolve_pass(timer, resolve_, [&] {
       glBindTextureUnit(WAVELETS_COEFFS_UNIT, coeffs_.get());
       glBindTextureUnit(WAVELETS_ACCUM_UNIT, accum_.color_texture());
-      view_.fx->bind_backdrop(resolve_.get());
-      glUseProgram(resolve_.get());
-      quad_.draw();
-    }
-    keep_frame();
+    });
   }
 
   Validation validate() override {
-    auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    std::vector<double> model = woit_model(view_.fragments, view_.backdrop, s_);
-    referencing.end();
-    ModelValidation mv = validate_against(model, kWaveletTolerance);
+    ModelValidation mv =
+        validate_against([&] { return woit_model(view_.fragments, view_.backdrop, s_); }, kWaveletTolerance);
     mv.v.metrics["model_off_channels"] = std::to_string(mv.check.off);
     if (s_.bits == 16) mv.v.metrics["half_blend_rounding"] = s_.half_truncates ? "toward-zero" : "nearest";
-    add_output_problems(mv);
     // Where float and double warp a fragment into different cells, the transmittance of the
     // fragments behind it in that pixel moves by up to its cell's share of its absorbance: up to
     // 1% of the channels may differ; the wrong-result fault changes 12.5% of the pixels.
-    const size_t allowed = mv.rgb.size() / 100;
-    add_model_problem(mv, "WOIT's CPU model", kWaveletTolerance, allowed);
-    conclude(mv.v, mv.problems);
-    return mv.v;
+    return conclude_against(mv, kWaveletTolerance, mv.rgb.size() / 100);
   }
 
  private:
@@ -164,8 +140,9 @@ class WoitCase final : public CapturedViewCase {
     glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
     glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &attachments);
     if (std::min(draw_buffers, attachments) < layers())
-      throw Unsupported("WOIT wavelet_coeffs=" + std::to_string(s_.coeffs) + " needs " + std::to_string(layers()) +
-                        " draw buffers; the driver has " + std::to_string(std::min(draw_buffers, attachments)));
+      throw Unsupported(technique_ + " wavelet_coeffs=" + std::to_string(s_.coeffs) + " needs " +
+                        std::to_string(layers()) + " draw buffers; the driver has " +
+                        std::to_string(std::min(draw_buffers, attachments)));
     const bool half = s_.bits == 16;
     coeffs_ = gl::make_texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(coeffs_.get(), 1, half ? GL_RGBA16F : GL_RGBA32F, width_, height_, layers());
@@ -178,7 +155,7 @@ class WoitCase final : public CapturedViewCase {
     }
     glNamedFramebufferDrawBuffers(coeff_fbo_.get(), static_cast<GLsizei>(bufs.size()), bufs.data());
     if (glCheckNamedFramebufferStatus(coeff_fbo_.get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Unsupported("WOIT wavelet_bits=" + std::to_string(s_.bits) + ": the driver cannot render to " +
+      throw Unsupported(technique_ + " wavelet_bits=" + std::to_string(s_.bits) + ": the driver cannot render to " +
                         (half ? "16" : "32") + "-bit float targets (framebuffer incomplete)");
     bytes_ = s_.coeffs * s_.bits / 8 + 16;  // and the weighted colour pass's RGBA32F sum
   }
