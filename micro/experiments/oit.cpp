@@ -206,13 +206,16 @@ class OitExperiment final : public Experiment {
         {"tied_pixels", T::Integer, "", "pixels with fragments of equal depth (their order is by colour)"},
         {"hidden_fragments", T::Integer, "",
          "opaque effect: transparent fragments behind the opaque depth, never captured (the CPU's count)"},
-        // the geometric reference of analytic (planes-only) scenes: empty elsewhere (docs/precision.md)
+        // the geometric reference of analytic (planes-only) scenes and the analytic reference of splat scenes
+        // (micro/oit/splats/splat_check.hpp): empty elsewhere (docs/precision.md)
         {"truth_rmse", T::Number, "",
          "rmse against the scene's planes composited in double in their true order, colours as described "
-         "(no format's quantisation)"},
+         "(no format's quantisation); splat scenes: against the analytic splat reference (every splat's alpha at "
+         "every pixel centre in double, sorted by the splat_depth key)"},
         {"truth_max_abs_error", T::Number, "", "largest channel error against that composite"},
         {"geometric_bad_pixels", T::Integer, "",
-         "pixels off the geometric composite with the fragment format's quantisation by more than the tolerance"},
+         "pixels off the geometric composite with the fragment format's quantisation by more than the tolerance; "
+         "splat scenes: off the analytic splat reference"},
         {"ambiguous_pixels", T::Integer, "",
          "pixels left out of the geometric comparison: a plane edge, the near or the far plane at the pixel centre"},
         // approximate techniques (micro/oit/approx/approx_case.cpp)

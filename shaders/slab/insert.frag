@@ -8,6 +8,8 @@
 #include "layers.glsl"
 // The scene effects: the opaque depth tested here (opaque_hides), the shading (self-shadowing).
 #include "../scene/backdrop.glsl"
+// a splat fragment without alpha comes back at alpha 0 (mask 0: returns before the lock), not discarded
+#define SPLAT_NO_DISCARD
 #include "../scene/fragment.glsl"
 uniform uint frameSeed;
 uniform int width;

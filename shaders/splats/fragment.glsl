@@ -1,5 +1,6 @@
 // The splat path of shaders/scene/fragment.glsl (SPLATS): the Gaussian evaluated at the pixel centre
-// as 3DGS does (alpha = min(0.99, opacity exp(power)), discarded below 1/255 and where power > 0),
+// as 3DGS does (alpha = min(0.99, opacity exp(power)), discarded below 1/255 and where power > 0; with
+// SPLAT_NO_DISCARD such a fragment is returned with alpha 0 instead),
 // and the fragment's depth key (the splat_depth parameter):
 //   centre   the mean's depth (Kerbl et al. 2023): the quad's own depth, gl_FragCoord.z
 //   ray-max  SPLAT_DEPTH_RAY_MAX: the depth of the Gaussian's maximum along the pixel's ray (Radl et al.
@@ -36,9 +37,15 @@ vec2 splat_depth_key() {
 SceneFragment splat_fragment() {
   vec2 d = gl_FragCoord.xy - vSplatCentre;
   float power = -0.5 * (vSplatConic.x * d.x * d.x + vSplatConic.z * d.y * d.y) - vSplatConic.y * d.x * d.y;
-  if (power > 0.0) discard;
   float alpha = min(0.99, vSplatColour.a * exp(power));
+#if defined(SPLAT_NO_DISCARD)
+  // The caller skips alpha 0 itself: SLAB's insertion, whose spinlock lost masks on llvmpipe when the
+  // invocations that take it had discarded (its image left [0, 1]; fine without the discard).
+  if (power > 0.0 || alpha < 1.0 / 255.0) alpha = 0.0;
+#else
+  if (power > 0.0) discard;
   if (alpha < 1.0 / 255.0) discard;
+#endif
   vec2 depth = splat_depth_key();
   // the shading's world position (self-shadowing) is the mean's: a splat is lit as one point
   return SceneFragment(shade_fragment(vec4(vSplatColour.rgb, alpha), vSplatMean), depth.x, depth.y,

@@ -34,6 +34,7 @@
 #include "oit/scene/gpu_mesh.hpp"
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
+#include "oit/splats/splat_check.hpp"
 #include "oit/techniques.hpp"
 #include "shaders/resolve/bindings.h"
 
@@ -289,6 +290,7 @@ class ExactCase final : public OitCase {
     // caught even though the reference above, built from the same captured fragments, agrees.
     // (Only where transparency is the one effect: the geometry knows no opaque pass or shading.)
     check_against_planes(rgba, stats, m, problems);
+    check_against_splat_list(rgba, m, problems);
     explain_loop_limit(stats, problems);
     merge_shadow_check(m, problems, passes_.validate_shadow());
     conclude(v, problems);
@@ -371,6 +373,14 @@ class ExactCase final : public OitCase {
     }
   }
 
+  // Splat scenes: the image against the analytic reference of the splat list (splat_check.hpp).
+  void check_against_splat_list(const std::vector<float>& rgba, std::map<std::string, std::string>& m,
+                                std::vector<std::string>& problems) {
+    auto referencing = ctx_.phase(Phase::Reference);
+    auto check = check_against_splats(passes_, rgba, 4, width_, height_, tolerance_);
+    referencing.end();
+    report_splat_check(check, tolerance_, m, &problems);
+  }
   // Analytic scenes: the image against the scene's own planes (a reference that shares nothing with
   // the captured fragments).
   void check_against_planes(const std::vector<float>& rgba, const ListStats& stats,

@@ -83,6 +83,7 @@ class ScenePasses {
   void bind_geometry(GLuint program) const;
   // The scene's splats on the GPU (null without any); transparent().draw() draws them.
   const GpuSplats* splats() const { return geometry_->transparent->splats(); }
+  const std::string& splat_depth() const { return splat_depth_; }  // splat scenes: the splat_depth parameter
   // The self-shadowing checks and shadow_* metrics (micro/oit/scene/shadow_map.hpp); empty without it.
   ShadowCheck validate_shadow();
   bool self_shadowing() const { return shadow_ != nullptr; }
