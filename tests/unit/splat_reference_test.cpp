@@ -57,6 +57,18 @@ TEST(SplatReference, OneIsotropicSplatIsItsClosedForm) {
       EXPECT_NEAR(ray_max_depth(*p, {x + 0.5, y + 0.5}, cam), glm::dot(v, mu) / glm::dot(v, v), 1e-12);
     }
   EXPECT_GT(covered, 20);
+  // With RGBA8 fragments: each fragment's alpha and colour rounded to 8 bits first.
+  o.quantise_rgba8 = true;
+  const SplatImage q = splat_reference({s}, cam, o);
+  auto unorm8 = [](double v) { return std::round(v * 255) / 255; };
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const double a = img.at(x, y).a, qa = unorm8(a);
+      for (int k = 0; k < 3; ++k)
+        ASSERT_NEAR(q.at(x, y)[k], qa * unorm8(s.colour[k]) + (1 - qa) * o.background[k], 1e-12) << x << "," << y;
+      ASSERT_NEAR(q.at(x, y).a, qa, 1e-12);
+    }
+  o.quantise_rgba8 = false;
   // Outside the near and far planes: skipped.
   EXPECT_FALSE(project_splat(s, splat_camera(front_view(), 64, 48, 4.0)));
   EXPECT_FALSE(project_splat(s, splat_camera(front_view(), 64, 48, 0.1, 3.9)));

@@ -14,6 +14,9 @@ namespace {
 constexpr int kTile = 16;
 constexpr double kMinAlpha = 1.0 / 255.0;
 
+// What packUnorm4x8 keeps of a channel (the capture's RGBA8 fragment format).
+double unorm8(double v) { return std::round(std::clamp(v, 0.0, 1.0) * 255.0) / 255.0; }
+
 struct Fragment {
   double key;
   std::uint32_t splat;
@@ -90,9 +93,11 @@ void composite_tile(int tx, int ty, const std::uint32_t* first, const std::uint3
       glm::dvec3 colour(0.0);
       double t = 1.0;
       for (const Fragment& f : l) {
-        const double next = t * (1.0 - f.alpha);
+        const double alpha = o.quantise_rgba8 ? unorm8(f.alpha) : f.alpha;
+        const glm::dvec3 c = proj[f.splat]->colour;
+        const double next = t * (1.0 - alpha);
         if (o.min_transmittance > 0 && next < o.min_transmittance) break;
-        colour += t * f.alpha * proj[f.splat]->colour;
+        colour += t * alpha * (o.quantise_rgba8 ? glm::dvec3(unorm8(c.r), unorm8(c.g), unorm8(c.b)) : c);
         t = next;
       }
       const size_t at = static_cast<size_t>(y) * c.width + x;

@@ -86,6 +86,10 @@ struct SplatReferenceOptions {
   SplatOrder order = SplatOrder::RayMaximum;
   double min_transmittance = 0;  // 3DGS's early termination at 1e-4; 0 blends every fragment
   glm::dvec3 background{1.0};
+  // Each fragment's colour and alpha rounded to 8 bits as the GPU's RGBA8 fragments are (frag_colour=RGBA8):
+  // over many layers that rounding alone moves a pixel by more than 2/255, so an RGBA8 case is compared
+  // with the quantised reference (the unquantised one is the scene's true image).
+  bool quantise_rgba8 = false;
   unsigned threads = 0;  // workers over the tiles; 0: one per hardware thread (the image is the same)
 };
 
