@@ -749,11 +749,14 @@ def plot_oit(data):
     panels = []  # (kind, group rows, title)
     for gkey, grows in groups.items():
         title = ", ".join(f"{c}={grows[0].get(c)}" for c in key_cols)
-        approx = error_col is not None and any((value(r, error_col) or 0) > FLOOR for r in grows)
+        # Splat scenes: the error against the analytic reference (truth_rmse), which the global sort reports too.
+        gcol = "truth_rmse" if any(value(r, "truth_rmse") is not None and r.get("splat_depth") for r in grows) \
+            else error_col
+        approx = gcol is not None and any((value(r, gcol) or 0) > FLOOR for r in grows)
         memory = approx and any(value(r, "bytes_per_pixel") is not None for r in grows)
         kinds = ["passes"] + (["error-time"] if approx else []) + (["error-memory"] if memory else []) + \
             (["format"] if formats else [])
-        panels.append([(k, grows, title) for k in kinds])
+        panels.append([(k, grows, title, gcol) for k in kinds])
     flat = [p for group in panels for p in group]
     wide = any(len({case_id(r, data.params) for r in g[0][1]}) > MANY_CASES or effects_vary(g[0][1])
                for g in panels)
@@ -767,7 +770,7 @@ def plot_oit(data):
         fig, axes = rows_grid([len(r) for r in rows], height=4.2)
     params = [p for p in data.params if p not in key_cols]
     legend_from = []
-    for i, (ax, (kind, grows, title)) in enumerate(zip(axes, flat)):
+    for i, (ax, (kind, grows, title, gcol)) in enumerate(zip(axes, flat)):
         labels = case_labels(grows, params, oit_label)
         same = [r for r in data.ok if all(r.get(c) == grows[0].get(c) for c in key_cols)]
         if kind == "passes":
@@ -780,9 +783,9 @@ def plot_oit(data):
                 stacked_passes(ax, same, grows, params, labels, title, legend=False)
                 legend_from.append(ax)
         elif kind == "error-time":
-            error_vs_time(ax, grows, error_col, title, params, labels)
+            error_vs_time(ax, grows, gcol, title, params, labels)
         elif kind == "error-memory":
-            error_vs_memory(ax, grows, error_col, title, params, labels)
+            error_vs_memory(ax, grows, gcol, title, params, labels)
         else:
             format_cost(ax, grows, title)
     exact_only = all(len(g) == 1 for g in panels) and error_col is not None

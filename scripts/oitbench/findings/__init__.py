@@ -11,13 +11,13 @@ from oitbench.findings.micro import (
 from oitbench.findings.exact import (
     section_capture, section_knowles2013, section_knowles2014, section_resolve_speedups, section_scale,
     section_targets)
-from oitbench.findings.approx import (section_approx, section_error_vs_time, section_lines)
+from oitbench.findings.approx import (section_approx, section_error_vs_time, section_lines, section_splats)
 
 
 SECTIONS = [section_runs, section_not_ok, section_occupancy, section_sort, section_layout, section_spinlock,
             section_stencil, section_knowles2014, section_resolve_speedups,
             section_knowles2013, section_capture, section_targets, section_scale, section_approx,
-            section_error_vs_time, section_lines, section_scenes, section_warmup]
+            section_error_vs_time, section_splats, section_lines, section_scenes, section_warmup]
 
 
 def render(results_dir, paper_dir, shown_dir):

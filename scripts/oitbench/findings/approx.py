@@ -1,9 +1,12 @@
-"""FINDINGS.md's sections on approximate OIT: the approximate techniques, error against time and line rendering."""
+"""FINDINGS.md's sections on approximate OIT: the approximate techniques, error against time, Gaussian splats and line
+rendering."""
+import statistics
+
 from oitbench import figures as plot
 from oitbench import papers as tables
 from oitbench import techniques
 from oitbench.findings.common import (
-    BASE_IMS, BLENDS, DASH, PER_PIXEL_ARRAY, UNSORTED, WEIGHTED_BLEND, RMSE_FLOOR, f_err, f_m, f_ms, f_x, field, missing, ms, num, ratio, res,
+    BASE_IMS, BLENDS, DASH, PER_PIXEL_ARRAY, UNSORTED, WEIGHTED_BLEND, RMSE_FLOOR, f_err, f_m, f_ms, f_num, f_x, field, missing, ms, num, ratio, res,
     scene_key, sizes_of, span, table, verdict, view_key, word)
 EXACT = set(techniques.names("exact"))  # the exact family: not MBOIT, STOCHASTIC, WOIT or SLAB, which are approximate too
 
@@ -220,4 +223,49 @@ def section_lines(f):
                      f"{f_x(ratio(poster[segs[0]], poster[segs[-1]]))}x over the same models.")
     lines += ["", "On a GPU the sort's passes are bandwidth-bound and nearly free for small models; on llvmpipe "
               "every pass is CPU work that grows with the data.", ""]
+    return lines
+
+
+def section_splats(f):
+    """Issue 29: the 3DGS global sort (the preset's baseline, named by the rows' baseline column) per million
+    splats, and every technique's time over it, its error against the analytic reference and bytes per pixel."""
+    name = "splats"
+    lines = ["## Gaussian splats", "",
+             "StopThePop's and HTGS's question: what the exact per-pixel order, hybrid, stochastic and weighted "
+             "blending cost against the 3DGS global sort, and what they gain in error against the analytic "
+             "reference ([docs/splats.md](../../docs/splats.md)).", ""]
+    rows = f.rows(name, "oit")
+    if not rows:
+        return lines + missing(name)
+    base = {r["baseline"].split("=", 1)[1] for r in rows if r.get("baseline", "").startswith("technique=")}
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["scene"], r.get("splat_depth", ""), res(r)), []).append(r)
+    body, per_million = [], []
+    for key in sorted(groups, key=lambda k: (num(groups[k][0], "polygons") or 0, k[1])):
+        g = groups[key]
+        gs = [r for r in g if r["technique"] in base]
+        t0 = statistics.median([ms(r) for r in gs]) if gs else None
+        splats = num(g[0], "polygons")
+        if t0 is not None and splats:
+            per_million.append((key, t0 / (splats / 1e6)))
+        if gs:
+            body.append([key[0], key[1], key[2], f"{plot.oit_label(gs[0])} (median of {len(gs)} groups)", f_ms(t0),
+                         f_x(1.0), f_err(num(gs[0], "truth_rmse")), f_num(num(gs[0], "bytes_per_pixel"))])
+        for r in sorted((r for r in g if r["technique"] not in base), key=ms):
+            speedup = num(r, "speedup")
+            over = 1.0 / speedup if speedup else ratio(ms(r), t0)  # paired in its interleaving group where it can be
+            body.append([key[0], key[1], key[2], plot.oit_label(r) + (f" {r['capture']}" if r.get("capture") and
+                                                                     r["technique"] in EXACT else ""),
+                         f_ms(ms(r)), f_x(over), f_err(num(r, "truth_rmse")), f_num(num(r, "bytes_per_pixel"))])
+    r0 = rows[0]
+    lines += [f"`presets/{name}.csv` ({f.reps(name, r0)}): per scene (splat count) and depth key, each valid "
+              "case's `total` median (ms), its time over the global sort's (the preset's baseline, paired in its interleaving group: 1 / speedup; below 1 faster; the global sort's row: the median of its groups), "
+              "its rmse against the analytic reference of its key (`truth_rmse`; empty where the technique does not "
+              "report it yet) and its bytes per pixel. Popping is not a row metric yet.", ""]
+    lines += table(["scene", "splat_depth", "resolution", "case", "ms", "over global sort", "truth rmse",
+                    "bytes/px"], body, [False] * 4 + [True] * 4)
+    for key, t in per_million:
+        lines.append(f"- The global sort on {key[0]} ({key[1]}, {key[2]}): {f_ms(t)} ms per million splats.")
+    lines.append("")
     return lines
