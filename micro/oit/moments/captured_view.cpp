@@ -46,6 +46,13 @@ CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
   return v;
 }
 
+void require_depth_bounds(const CapturedView& view, const std::string& technique) {
+  const Mesh& mesh = view.fx->mesh();
+  if (mesh.vertices.empty() && !mesh.splats.empty())
+    throw Unsupported(technique + " on splats: its depth warp is bounded by the mesh's vertices and scene '" +
+                      view.scene->name + "' has only splats (not supported yet)");
+}
+
 bool record_coverage(const CapturedView& view, GLuint framebuffer, int width, int height, const gl::Program& program,
                      std::vector<CoverageFragment>& out) {
   const GLuint words = STOCHASTIC_CAPTURE_WORDS;

@@ -30,6 +30,10 @@ struct CapturedView {
   HostLists fragments;                // the visible ones (with the opaque effect, hidden by the CPU)
 };
 CapturedView capture_view(const ParamSet& p, CaseContext& ctx);
+// MBOIT's and WOIT's warp needs depth_range, the extent of the mesh's vertices; a view of splats has none
+// (a splat's extent along the ray is not a vertex), so `technique` is Unsupported there, never a
+// degenerate warp whose image agrees with its model and not with the scene.
+void require_depth_bounds(const CapturedView& view, const std::string& technique);
 
 // Every fragment of the view as shaders/stochastic/coverage.frag records it (pixel, primitive, sample
 // coverage, colour, depth), drawn with `program` into `framebuffer` (MSAA for STOCHASTIC, single-sample

@@ -47,6 +47,7 @@ class MboitCase final : public CapturedViewCase {
     s_.bits = static_cast<int>(p.get_int("moment_bits"));
     s_.bias = mboit_paper_bias(s_.kind, s_.moments, s_.bits);
     s_.near_far = view_.near_far;
+    require_depth_bounds(view_, p.get("technique"));
     s_.depth_range = view_.depth_range;
 
     // The moment targets: b0, b1..b4, and b5..b6 or b5..b8.

@@ -43,6 +43,7 @@ class WoitCase final : public CapturedViewCase {
     s_.coeffs = static_cast<int>(p.get_int("wavelet_coeffs"));
     s_.bits = static_cast<int>(p.get_int("wavelet_bits"));
     s_.near_far = view_.near_far;
+    require_depth_bounds(view_, p.get("technique"));
     s_.depth_range = view_.depth_range;
     make_targets();
     if (s_.bits == 16) s_.half_truncates = blend_truncates_half(ctx);
