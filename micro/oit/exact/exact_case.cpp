@@ -377,7 +377,8 @@ class ExactCase final : public OitCase {
   void check_against_splat_list(const std::vector<float>& rgba, std::map<std::string, std::string>& m,
                                 std::vector<std::string>& problems) {
     auto referencing = ctx_.phase(Phase::Reference);
-    auto check = check_against_splats(passes_, rgba, 4, width_, height_, tolerance_);
+    auto check =
+        check_against_splats(passes_, rgba, 4, width_, height_, tolerance_, format_.colour == FragColour::RGBA8);
     referencing.end();
     report_splat_check(check, tolerance_, m, &problems);
   }

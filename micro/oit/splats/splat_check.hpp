@@ -23,9 +23,10 @@ struct SplatCheck {
 // `image`: the case's image (`channels` floats a pixel, the colour first, glReadPixels' order),
 // composited over the scene's background (with 4 channels, a pixel at alpha 0 is uncovered: the background). Nothing
 // where the scene has no splats or runs another effect than transparency (the reference knows no opaque pass). The
-// reference's order is the case's splat_depth key.
+// reference's order is the case's splat_depth key. `rgba8_fragments`: the case captured its fragments in RGBA8
+// (frag_colour=rgba8), so the reference rounds each splat fragment the same way (splat_reference.hpp).
 std::optional<SplatCheck> check_against_splats(const ScenePasses& fx, const std::vector<float>& image, int channels,
-                                               int width, int height, double tolerance);
+                                               int width, int height, double tolerance, bool rgba8_fragments = false);
 
 // The metrics of a check (nothing without one), and its problem where `problems` is given (the exact
 // techniques: they must match it).
