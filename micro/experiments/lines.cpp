@@ -128,9 +128,7 @@ class LinesCase final : public CaseInstance {
         capture();
       }
       auto t = timer.pass("resolve");
-      target_.bind();
-      const float clear[4] = {0, 0, 0, 0};
-      glClearNamedFramebufferfv(target_.framebuffer(), GL_COLOR, 0, clear);
+      target_.bind_cleared(0, 0, 0, 0);
       glEnable(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
       lists_.bind();
@@ -158,9 +156,7 @@ class LinesCase final : public CaseInstance {
                   GL_ELEMENT_ARRAY_BARRIER_BIT);
     }
     auto t = timer.pass("blend");
-    target_.bind();
-    const float clear[4] = {background_.r, background_.g, background_.b, 1};
-    glClearNamedFramebufferfv(target_.framebuffer(), GL_COLOR, 0, clear);
+    target_.bind_cleared(background_.r, background_.g, background_.b, 1);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     glUseProgram(blend_.get());

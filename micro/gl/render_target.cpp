@@ -73,6 +73,12 @@ void RenderTarget::bind() const {
   glViewport(0, 0, width_, height_);
 }
 
+void RenderTarget::bind_cleared(float r, float g, float b, float a) const {
+  bind();
+  const float rgba[4] = {r, g, b, a};
+  glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, rgba);
+}
+
 std::vector<float> RenderTarget::read_rgba32f() const {
   std::vector<float> px(static_cast<size_t>(width_) * static_cast<size_t>(height_) * 4);
   glGetTextureImage(color_.get(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(px.size() * sizeof(float)), px.data());

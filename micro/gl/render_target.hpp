@@ -25,6 +25,8 @@ class RenderTarget {
   // allocation that fails).
   RenderTarget(int width, int height, GLenum color_format = GL_RGBA32F, bool depth_stencil = false);
   void bind() const;  // binds the FBO and sets the viewport
+  // bind(), then clears the colour to (r, g, b, a): the start of a pass that draws into the whole target.
+  void bind_cleared(float r, float g, float b, float a) const;
   int width() const { return width_; }
   int height() const { return height_; }
   GLuint framebuffer() const { return fbo_.get(); }

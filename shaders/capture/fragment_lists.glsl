@@ -6,35 +6,10 @@
 
 layout(binding = CAPTURE_HEADS_UNIT, r32ui) uniform coherent uimage2D headPointers;
 layout(binding = CAPTURE_NEXT_UNIT, r32ui) uniform uimageBuffer nodeNext;
-#if FRAG_CHUNKS > 1  // past one texel buffer: the next pointers' chunks (fragment_storage.glsl)
-FRAG_DECLARE_CHUNK_(1, r32ui, nodeNext_1, 1)
-#endif
-#if FRAG_CHUNKS > 2
-FRAG_DECLARE_CHUNK_(1, r32ui, nodeNext_2, 2)
-#else
-#define nodeNext_2 nodeNext_1
-#endif
-#if FRAG_CHUNKS > 3
-FRAG_DECLARE_CHUNK_(1, r32ui, nodeNext_3, 3)
-#else
-#define nodeNext_3 nodeNext_2
-#endif
-uint frag_next(uint node) {
-#if FRAG_CHUNKS > 1
-  uvec4 r;
-  FRAG_CHUNKED_LOAD(r, nodeNext, nodeNext_1, nodeNext_2, nodeNext_3, node)
-  return r.r;
-#else
-  return imageLoad(nodeNext, int(node)).r;
-#endif
-}
-void frag_set_next(uint node, uint next) {
-#if FRAG_CHUNKS > 1
-  FRAG_CHUNKED_STORE(nodeNext, nodeNext_1, nodeNext_2, nodeNext_3, node, uvec4(next))
-#else
-  imageStore(nodeNext, int(node), uvec4(next));
-#endif
-}
+FRAG_DECLARE_CHUNKS(1, r32ui, nodeNext_1, nodeNext_2, nodeNext_3)  // past one texel buffer (fragment_storage.glsl)
+FRAG_CHUNKED_ACCESSORS(frag_next_words_, frag_set_next_words_, nodeNext, nodeNext_1, nodeNext_2, nodeNext_3)
+uint frag_next(uint node) { return frag_next_words_(node).r; }
+void frag_set_next(uint node, uint next) { frag_set_next_words_(node, uvec4(next)); }
 #ifdef STORAGE_COUNTS
 layout(binding = CAPTURE_COUNTS_UNIT, r32ui) uniform uimage2D fragCounts;
 #endif

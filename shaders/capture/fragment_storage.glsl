@@ -76,8 +76,39 @@
   else imageStore(a3, o, v);
 #endif
 #endif
+// FRAG_CHUNKED_ACCESSORS(load, store, name0, name1, name2, name3): the functions uvec4 load(uint node)
+// and void store(uint node, uvec4 v) of one chunked array (its images name0..name3; the plain
+// imageLoad/imageStore of name0 with one chunk).
+#if FRAG_CHUNKS > 1
+#define FRAG_CHUNKED_ACCESSORS(load, store, a0, a1, a2, a3) \
+  uvec4 load(uint node) {                                   \
+    uvec4 r;                                                \
+    FRAG_CHUNKED_LOAD(r, a0, a1, a2, a3, node)              \
+    return r;                                               \
+  }                                                         \
+  void store(uint node, uvec4 v) { FRAG_CHUNKED_STORE(a0, a1, a2, a3, node, v) }
+#else
+#define FRAG_CHUNKED_ACCESSORS(load, store, a0, a1, a2, a3)    \
+  uvec4 load(uint node) { return imageLoad(a0, int(node)); } \
+  void store(uint node, uvec4 v) { imageStore(a0, int(node), v); }
+#endif
 // FRAG_DECLARE_CHUNK_(slot, format, name, chunk): the image of chunk `chunk` > 0 of one array.
 #define FRAG_DECLARE_CHUNK_(slot, format, name, chunk) layout(binding = CAPTURE_CHUNK_UNIT_BASE + 3 * (chunk - 1) + slot, format) uniform uimageBuffer name;
+// FRAG_DECLARE_CHUNKS(slot, format, name1, name2, name3): the images of one array's chunks past the
+// first, FRAG_CHUNKS - 1 of them (the names of chunks that do not exist are never read: above, the
+// accessors of FRAG_CHUNKS == 2 or 3 stop short of them).
+#if FRAG_CHUNKS == 2
+#define FRAG_DECLARE_CHUNKS(slot, format, a1, a2, a3) FRAG_DECLARE_CHUNK_(slot, format, a1, 1)
+#elif FRAG_CHUNKS == 3
+#define FRAG_DECLARE_CHUNKS(slot, format, a1, a2, a3) \
+  FRAG_DECLARE_CHUNK_(slot, format, a1, 1) FRAG_DECLARE_CHUNK_(slot, format, a2, 2)
+#elif FRAG_CHUNKS == 4
+#define FRAG_DECLARE_CHUNKS(slot, format, a1, a2, a3)                              \
+  FRAG_DECLARE_CHUNK_(slot, format, a1, 1) FRAG_DECLARE_CHUNK_(slot, format, a2, 2) \
+  FRAG_DECLARE_CHUNK_(slot, format, a3, 3)
+#else
+#define FRAG_DECLARE_CHUNKS(slot, format, a1, a2, a3)
+#endif
 
 #if defined(FRAG_COLOUR_RGBA32F)
 #define FRAG_DATA_FORMAT rgba32ui
@@ -89,65 +120,17 @@ layout(binding = CAPTURE_NODES_UNIT, FRAG_DATA_FORMAT) uniform uimageBuffer node
 #define FRAG_WIDE
 layout(binding = CAPTURE_NODE_DEPTH_UNIT, r32ui) uniform uimageBuffer nodeDepth;
 #endif
-#if FRAG_CHUNKS > 1
-FRAG_DECLARE_CHUNK_(0, FRAG_DATA_FORMAT, nodeData_1, 1)
+FRAG_DECLARE_CHUNKS(0, FRAG_DATA_FORMAT, nodeData_1, nodeData_2, nodeData_3)
 #if defined(FRAG_WIDE)
-FRAG_DECLARE_CHUNK_(2, r32ui, nodeDepth_1, 1)
-#endif
-#endif
-#if FRAG_CHUNKS > 2
-FRAG_DECLARE_CHUNK_(0, FRAG_DATA_FORMAT, nodeData_2, 2)
-#if defined(FRAG_WIDE)
-FRAG_DECLARE_CHUNK_(2, r32ui, nodeDepth_2, 2)
-#endif
-#else
-#define nodeData_2 nodeData_1
-#define nodeDepth_2 nodeDepth_1
-#endif
-#if FRAG_CHUNKS > 3
-FRAG_DECLARE_CHUNK_(0, FRAG_DATA_FORMAT, nodeData_3, 3)
-#if defined(FRAG_WIDE)
-FRAG_DECLARE_CHUNK_(2, r32ui, nodeDepth_3, 3)
-#endif
-#else
-#define nodeData_3 nodeData_2
-#define nodeDepth_3 nodeDepth_2
+FRAG_DECLARE_CHUNKS(2, r32ui, nodeDepth_1, nodeDepth_2, nodeDepth_3)
 #endif
 
 // The node's words as stored (colour words in .rg or .rgba; depth words apart for wide formats).
-uvec4 frag_data_load(uint node) {
-#if FRAG_CHUNKS > 1
-  uvec4 r;
-  FRAG_CHUNKED_LOAD(r, nodeData, nodeData_1, nodeData_2, nodeData_3, node)
-  return r;
-#else
-  return imageLoad(nodeData, int(node));
-#endif
-}
-void frag_data_store(uint node, uvec4 v) {
-#if FRAG_CHUNKS > 1
-  FRAG_CHUNKED_STORE(nodeData, nodeData_1, nodeData_2, nodeData_3, node, v)
-#else
-  imageStore(nodeData, int(node), v);
-#endif
-}
+FRAG_CHUNKED_ACCESSORS(frag_data_load, frag_data_store, nodeData, nodeData_1, nodeData_2, nodeData_3)
 #if defined(FRAG_WIDE)
-uint frag_depth_load(uint node) {
-#if FRAG_CHUNKS > 1
-  uvec4 r;
-  FRAG_CHUNKED_LOAD(r, nodeDepth, nodeDepth_1, nodeDepth_2, nodeDepth_3, node)
-  return r.r;
-#else
-  return imageLoad(nodeDepth, int(node)).r;
-#endif
-}
-void frag_depth_store(uint node, uint d) {
-#if FRAG_CHUNKS > 1
-  FRAG_CHUNKED_STORE(nodeDepth, nodeDepth_1, nodeDepth_2, nodeDepth_3, node, uvec4(d, 0u, 0u, 0u))
-#else
-  imageStore(nodeDepth, int(node), uvec4(d, 0u, 0u, 0u));
-#endif
-}
+FRAG_CHUNKED_ACCESSORS(frag_depth_words_load_, frag_depth_words_store_, nodeDepth, nodeDepth_1, nodeDepth_2, nodeDepth_3)
+uint frag_depth_load(uint node) { return frag_depth_words_load_(node).r; }
+void frag_depth_store(uint node, uint d) { frag_depth_words_store_(node, uvec4(d, 0u, 0u, 0u)); }
 #endif
 
 #if defined(FRAG_COLOUR_RGBA32F)

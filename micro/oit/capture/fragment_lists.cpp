@@ -9,10 +9,8 @@
 namespace oitbench::oit {
 
 FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool with_counts, FragFormat format)
-    : width_(width),
-      height_(height),
+    : FragmentStorage(width, height, format),
       with_counts_(with_counts),
-      format_(format),
       heads_(gl::make_texture(GL_TEXTURE_2D)),
       counter_(gl::make_buffer()) {
   glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
@@ -25,19 +23,11 @@ FragmentLists::FragmentLists(int width, int height, size_t initial_pool, bool wi
 }
 
 void FragmentLists::allocate(size_t pool) {
-  check_pool(pool);  // refused (Unsupported) before anything that large is allocated
-  // Never fewer chunks than the programs were built for (defines()); more only past the last one.
-  size_t chunks = std::max(nodes_.chunks(), chunks_for(pool));
-  nodes_ = NodePool(pool, format_.colour, "linked-list node pool", chunks);
+  size_t chunks = allocate_nodes(pool, "linked-list node pool");
   next_ = ChunkedTexels(pool, GL_R32UI, 4, "linked-list node pool", chunks);
-  pool_ = pool;
 }
 
-Defines FragmentLists::defines() const {
-  Defines d = frag_format_defines(format_);
-  for (auto& x : chunk_defines(nodes_.chunks(), nodes_.shift())) d.push_back(x);
-  return d;
-}
+Defines FragmentLists::defines() const { return node_defines(); }
 
 void FragmentLists::bind() const {
   glBindImageTexture(kHeadsUnit, heads_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);

@@ -19,22 +19,15 @@ class FragmentLists final : public FragmentStorage {
   // re-renders with a bigger pool while the counter passed the pool.
   int capture(const std::vector<GLuint>& programs, const std::function<void()>& draw) override;
   void bind() const override;
-  size_t fragments() const override { return fragments_; }
-  size_t pool() const override { return pool_; }
   size_t bytes() const override;
-  size_t buffers() const override { return nodes_.chunks(); }
   bool with_counts() const override { return with_counts_; }
   HostLists read_back() const override;
 
  private:
   void allocate(size_t pool);
-  int width_, height_;
   bool with_counts_;
-  FragFormat format_;
-  size_t pool_ = 0, fragments_ = 0;
   size_t shrink_to_ = 0;  // pool for the next frame when this one needed much less
   gl::Texture heads_, counts_;
-  NodePool nodes_;
   ChunkedTexels next_;
   gl::Buffer counter_;
 };

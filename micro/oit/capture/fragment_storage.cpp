@@ -146,6 +146,20 @@ Defines chunk_defines(size_t chunks, unsigned shift) {
   return {{"FRAG_CHUNKS", std::to_string(chunks)}, {"FRAG_CHUNK_SHIFT", std::to_string(shift)}};
 }
 
+Defines FragmentStorage::node_defines() const {
+  Defines d = frag_format_defines(format_);
+  for (auto& x : chunk_defines(nodes_.chunks(), nodes_.shift())) d.push_back(x);
+  return d;
+}
+
+size_t FragmentStorage::allocate_nodes(size_t pool, const std::string& what) {
+  check_pool(pool);
+  const size_t chunks = std::max(nodes_.chunks(), chunks_for(pool));
+  nodes_ = NodePool(pool, format_.colour, what, chunks);
+  pool_ = pool;
+  return chunks;
+}
+
 ChunkedTexels::ChunkedTexels(size_t texels, GLenum format, size_t texel_bytes, const std::string& what,
                              size_t min_chunks)
     : format_(format), texel_bytes_(texel_bytes) {

@@ -137,17 +137,31 @@ class FragmentStorage {
   // frame was rendered again because the pool was too small (fragments are never dropped).
   virtual int capture(const std::vector<GLuint>& programs, const std::function<void()>& draw) = 0;
   virtual void bind() const = 0;         // images and buffers for a pass that reads the fragments
-  virtual size_t fragments() const = 0;  // captured in the last frame
-  virtual size_t pool() const = 0;       // fragments the storage holds room for
   virtual size_t bytes() const = 0;      // GPU memory it holds
-  virtual size_t buffers() const = 0;    // texel buffers each node array is split into (ChunkedTexels)
   virtual bool with_counts() const = 0;  // per-pixel counts exist (fragCounts, image unit 3)
   virtual HostLists read_back() const = 0;
+  size_t fragments() const { return fragments_; }     // captured in the last frame
+  size_t pool() const { return pool_; }               // fragments the storage holds room for
+  size_t buffers() const { return nodes_.chunks(); }  // texel buffers each node array is split into
 
  protected:
+  // What both layouts keep: the image's size, the fragment format, the node pool (NodePool) and the
+  // fragments of the last frame.
+  FragmentStorage(int width, int height, FragFormat format) : width_(width), height_(height), format_(format) {}
   void check_pool(size_t pool) const {
     if (guard_) guard_(pool);
   }
+  // The format's defines and the node chunks' (every layout's defines() begins with them).
+  Defines node_defines() const;
+  // Refuses `pool` through the guard (Unsupported) before anything that large is allocated, then
+  // allocates the nodes of `pool` fragments, never in fewer chunks than the programs were built for
+  // (defines()), more only past the last one. Returns the chunks.
+  size_t allocate_nodes(size_t pool, const std::string& what);
+
+  int width_, height_;
+  FragFormat format_;
+  size_t pool_ = 0, fragments_ = 0;
+  NodePool nodes_;
 
  private:
   std::function<void(size_t)> guard_;

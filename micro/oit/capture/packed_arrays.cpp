@@ -7,9 +7,7 @@
 namespace oitbench::oit {
 
 PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool, FragFormat format)
-    : width_(ctx.width()),
-      height_(ctx.height()),
-      format_(format),
+    : FragmentStorage(ctx.width(), ctx.height(), format),
       counts_(gl::make_texture(GL_TEXTURE_2D)),
       offsets_(gl::make_buffer()),
       scan_(ctx, static_cast<size_t>(ctx.width()) * ctx.height()) {
@@ -19,12 +17,7 @@ PackedArrays::PackedArrays(const CaseContext& ctx, size_t initial_pool, FragForm
   allocate(std::max<size_t>(initial_pool, 1));
 }
 
-void PackedArrays::allocate(size_t pool) {
-  check_pool(pool);  // refused (Unsupported) before anything that large is allocated
-  // Never fewer chunks than the programs were built for (defines()); more only past the last one.
-  nodes_ = NodePool(pool, format_.colour, "packed per-pixel arrays", std::max(nodes_.chunks(), chunks_for(pool)));
-  pool_ = pool;
-}
+void PackedArrays::allocate(size_t pool) { allocate_nodes(pool, "packed per-pixel arrays"); }
 
 void PackedArrays::bind() const {
   nodes_.bind();

@@ -17,8 +17,7 @@ class PackedArrays final : public FragmentStorage {
 
   CaptureStorage kind() const override { return CaptureStorage::PPPA; }
   Defines defines() const override {
-    Defines d = frag_format_defines(format_);
-    for (auto& x : chunk_defines(nodes_.chunks(), nodes_.shift())) d.push_back(x);
+    Defines d = node_defines();
     d.push_back({"STORAGE_PPPA", ""});
     return d;
   }
@@ -29,10 +28,7 @@ class PackedArrays final : public FragmentStorage {
   // programs[1] fills. Never re-renders: returns 0.
   int capture(const std::vector<GLuint>& programs, const std::function<void()>& draw) override;
   void bind() const override;
-  size_t fragments() const override { return fragments_; }
-  size_t pool() const override { return pool_; }
   size_t bytes() const override;
-  size_t buffers() const override { return nodes_.chunks(); }
   bool with_counts() const override { return true; }
   // Also checks that the fill ended each pixel where the scan said (every counted fragment
   // stored, no pixel spilling into the next): HostLists::error names the first pixel that did not.
@@ -42,11 +38,7 @@ class PackedArrays final : public FragmentStorage {
 
  private:
   void allocate(size_t pool);
-  int width_, height_;
-  FragFormat format_;
-  size_t pool_ = 0, fragments_ = 0;
   gl::Texture counts_;
-  NodePool nodes_;
   gl::Buffer offsets_;
   PrefixSum scan_;
   double last_count_ms_ = 0;

@@ -109,9 +109,7 @@ class MboitCase final : public CapturedViewCase {
     }
     {
       auto t = timer.pass("blend");
-      accum_.bind();
-      const float zero[4] = {0, 0, 0, 0};
-      glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 0, zero);
+      accum_.bind_cleared(0, 0, 0, 0);
       glBlendFunc(GL_ONE, GL_ONE);
       bind_moments();
       glUseProgram(blend_pass_.get());

@@ -75,6 +75,22 @@ class Node {
         child(k).fail("unknown key \"" + k + "\"; expected one of: " + list);
       }
   }
+  // A required object `key` of named objects ({"NAME": {...}, ...}; `usage` says what is missing),
+  // and f(name, node) for each entry, checked as an object of the `allowed` keys. Returns the map.
+  template <class F>
+  Node for_each_named(const std::string& key, const std::string& usage, const std::vector<std::string>& allowed,
+                      F f) const {
+    if (!has(key)) fail(usage);
+    Node map = child(key);
+    map.expect_object({});
+    for (const auto& [k, v] : j_.at(key).items()) {
+      (void)v;
+      Node n = map.child(k);
+      n.expect_object(allowed);
+      f(k, n);
+    }
+    return map;
+  }
   std::string str() const {
     if (!j_.is_string()) fail("expected a string, got " + std::string(j_.type_name()));
     return j_.get<std::string>();
@@ -555,19 +571,28 @@ void append_splats(SplatList& to, SplatList&& from) {
     to.insert(to.end(), from.begin(), from.end());
 }
 
-// "splats": its parameters taken together (params with small applied, and params alone).
-void check_splat_params(Node& o, const SceneObject& obj) {
-  if (obj.generator != "splats") return;
+// The parameter sets an object is built with: its "params", and "small" applied over them when given.
+// f(merged, params): params is true for "params" alone, false for "small" over them.
+template <class F>
+void for_each_parameter_set(const SceneObject& obj, F f) {
   for (const json* ps : {&obj.params, &obj.small}) {
     if (!ps->is_object()) continue;
     json merged = obj.params;
     for (const auto& [k, v] : ps->items()) merged[k] = v;
+    f(merged, ps == &obj.params);
+  }
+}
+
+// "splats": its parameters taken together (params with small applied, and params alone).
+void check_splat_params(Node& o, const SceneObject& obj) {
+  if (obj.generator != "splats") return;
+  for_each_parameter_set(obj, [&](const json& merged, bool params) {
     auto problem = splat_params_problem(merged);
-    if (!problem) continue;
-    Node where = o.child(ps == &obj.params ? "params" : "small");
+    if (!problem) return;
+    Node where = o.child(params ? "params" : "small");
     if (where.has(problem->first)) where.child(problem->first).fail(problem->second);
     where.fail(problem->second + " (with the defaults of the keys not given)");
-  }
+  });
 }
 
 // Every model file of the scene found and a regular file of bounded size: a folder or /dev/null is bad
@@ -711,18 +736,15 @@ void check_object_param(Node& pn, const std::string& pk, const json& pv, const S
 // "planes": colours and alphas lists hold one entry per plane (count), in params and in small.
 void check_plane_lists(Node& o, const SceneObject& obj) {
   if (obj.generator != "planes") return;
-  for (const json* ps : {&obj.params, &obj.small}) {
-    if (!ps->is_object()) continue;
-    json merged = obj.params;
-    for (const auto& [k, v] : ps->items()) merged[k] = v;
+  for_each_parameter_set(obj, [&](const json& merged, bool params) {
     size_t count = merged.contains("count") ? merged["count"].get<size_t>() : 128;
     for (const char* list : {"colours", "alphas"})
       if (merged.contains(list) && merged[list].size() != count)
-        o.child(ps == &obj.params || !obj.small.contains(list) ? "params" : "small")
+        o.child(params || !obj.small.contains(list) ? "params" : "small")
             .child(list)
             .fail("expected " + std::to_string(count) + " entries (one per plane: count), got " +
                   std::to_string(merged[list].size()));
-  }
+  });
 }
 
 // One entry of "objects": its generator, material, params and small.
@@ -795,14 +817,8 @@ SceneObject parse_object(Node o, const SceneDesc& s) {
   return obj;
 }
 
-void parse_materials(Node& root, const json& j, SceneDesc& s) {
-  if (!root.has("materials")) root.fail("expected \"materials\": {\"NAME\": {\"colour\": [r, g, b], \"alpha\": a}}");
-  auto mats = root.child("materials");
-  mats.expect_object({});
-  for (const auto& [k, v] : j["materials"].items()) {
-    (void)v;
-    auto n = mats.child(k);
-    n.expect_object({"colour", "alpha", "opaque", "soft"});
+void parse_materials(const Node& root, SceneDesc& s) {
+  auto material = [&](const std::string& k, const Node& n) {
     Material m;
     m.name = k;
     if (n.has("colour")) m.colour = n.child("colour").vec3(0, 1);
@@ -811,17 +827,13 @@ void parse_materials(Node& root, const json& j, SceneDesc& s) {
     if (n.has("soft")) m.soft = n.child("soft").boolean();
     if (m.opaque) m.alpha = 1.0f;
     s.materials.push_back(m);
-  }
+  };
+  root.for_each_named("materials", "expected \"materials\": {\"NAME\": {\"colour\": [r, g, b], \"alpha\": a}}",
+                      {"colour", "alpha", "opaque", "soft"}, material);
 }
 
-void parse_views(Node& root, const json& j, SceneDesc& s) {
-  if (!root.has("views")) root.fail("expected \"views\": {\"NAME\": {\"eye\": [x, y, z], ...}}");
-  auto views = root.child("views");
-  views.expect_object({});
-  for (const auto& [k, v] : j["views"].items()) {
-    (void)v;
-    auto n = views.child(k);
-    n.expect_object({"eye", "target", "up", "fov", "order"});
+void parse_views(const Node& root, SceneDesc& s) {
+  auto view_of = [&](const std::string& k, const Node& n) {
     View view;
     view.name = k;
     if (!n.has("eye")) n.fail("expected \"eye\": [x, y, z]");
@@ -834,7 +846,9 @@ void parse_views(Node& root, const json& j, SceneDesc& s) {
     if (glm::length(glm::cross(glm::normalize(view.target - view.eye), view.up)) < 1e-4f)
       n.fail("\"up\" is parallel to the view direction (or zero); give an up vector across it");
     s.views.push_back(view);
-  }
+  };
+  Node views = root.for_each_named("views", "expected \"views\": {\"NAME\": {\"eye\": [x, y, z], ...}}",
+                                   {"eye", "target", "up", "fov", "order"}, view_of);
   if (s.views.empty()) views.fail("expected at least one view");
 }
 
@@ -878,7 +892,7 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     for (size_t i = 0; i < r.raw().size(); ++i) s.model_roots.push_back(r.element(i).str());
   }
   if (root.has("background")) s.background = root.child("background").vec3(0, 1);
-  parse_materials(root, j, s);
+  parse_materials(root, s);
   if (!root.has("objects")) root.fail("expected \"objects\": [{\"generator\": ..., \"material\": ...}]");
   auto objs = root.child("objects");
   if (!objs.raw().is_array() || objs.raw().empty()) objs.fail("expected a non-empty array of objects");
@@ -886,7 +900,7 @@ SceneDesc parse_scene(const std::string& path, const std::string& text) {
     s.objects.push_back(parse_object(objs.element(i), s));
   }
   parse_light_and_effects(root, s);
-  parse_views(root, j, s);
+  parse_views(root, s);
   return s;
 }
 

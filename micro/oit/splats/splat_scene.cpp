@@ -8,24 +8,14 @@
 
 namespace oitbench::oit {
 
+// The numeric parameters read by name, each left at its default when the object does not name it
+// (nlohmann's reader: one value(key, default) a member). The offset, a vector, is read below.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(SplatGeneratorParams, count, clusters, half_size, depth, spread,
+                                                scale_min, scale_max, anisotropy, opacity_min, opacity_max,
+                                                opacity_shape, colour_mix, seed)
+
 SplatGeneratorParams splat_generator_params(const nlohmann::json& p) {
-  SplatGeneratorParams s;
-  auto num = [&](const char* key, double& out) {
-    if (p.contains(key)) out = p[key].get<double>();
-  };
-  num("count", s.count);
-  num("clusters", s.clusters);
-  num("half_size", s.half_size);
-  num("depth", s.depth);
-  num("spread", s.spread);
-  num("scale_min", s.scale_min);
-  num("scale_max", s.scale_max);
-  num("anisotropy", s.anisotropy);
-  num("opacity_min", s.opacity_min);
-  num("opacity_max", s.opacity_max);
-  num("opacity_shape", s.opacity_shape);
-  num("colour_mix", s.colour_mix);
-  num("seed", s.seed);
+  SplatGeneratorParams s = p.get<SplatGeneratorParams>();
   if (p.contains("offset"))
     for (int k = 0; k < 3; ++k) s.offset[k] = p["offset"][k].get<float>();
   return s;

@@ -110,9 +110,7 @@ class StochasticCase final : public CapturedViewCase {
     }
     {
       auto t = timer.pass("alpha");
-      total_.bind();
-      const float one[4] = {1, 1, 1, 1};
-      glClearNamedFramebufferfv(total_.framebuffer(), GL_COLOR, 0, one);
+      total_.bind_cleared(1, 1, 1, 1);
       glEnable(GL_BLEND);
       glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
       glUseProgram(alpha_.get());

@@ -82,8 +82,7 @@ class WoitCase final : public CapturedViewCase {
     }
     {
       auto t = timer.pass("blend");
-      accum_.bind();
-      glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 0, zero);
+      accum_.bind_cleared(0, 0, 0, 0);
       glBindTextureUnit(WAVELETS_COEFFS_UNIT, coeffs_.get());
       glUseProgram(blend_pass_.get());
       view_.mesh->draw();
