@@ -250,7 +250,7 @@ def section_splats(f):
         if t0 is not None and splats:
             per_million.append((key, t0 / (splats / 1e6)))
         if gs:
-            body.append([key[0], key[1], key[2], f"{plot.oit_label(gs[0])} (median of {len(gs)} groups)", f_ms(t0),
+            body.append([key[0], key[1], key[2], f"{plot.oit_label(gs[0])} (median of {len(gs)} row(s))", f_ms(t0),
                          f_x(1.0), f_err(num(gs[0], "truth_rmse")), f_num(num(gs[0], "bytes_per_pixel"))])
         for r in sorted((r for r in g if r["technique"] not in base), key=ms):
             speedup = num(r, "speedup")
@@ -260,7 +260,7 @@ def section_splats(f):
                          f_ms(ms(r)), f_x(over), f_err(num(r, "truth_rmse")), f_num(num(r, "bytes_per_pixel"))])
     r0 = rows[0]
     lines += [f"`presets/{name}.csv` ({f.reps(name, r0)}): per scene (splat count) and depth key, each valid "
-              "case's `total` median (ms), its time over the global sort's (the preset's baseline, paired in its interleaving group: 1 / speedup; below 1 faster; the global sort's row: the median of its groups), "
+              "case's `total` median (ms), its time over the global sort's (the preset's baseline, paired in its interleaving group: 1 / speedup; below 1 faster; the global sort's row: the median of its rows, one per interleaving group), "
               "its rmse against the analytic reference of its key (`truth_rmse`; empty where the technique does not "
               "report it yet) and its bytes per pixel. Popping is not a row metric yet.", ""]
     lines += table(["scene", "splat_depth", "resolution", "case", "ms", "over global sort", "truth rmse",
