@@ -82,27 +82,24 @@ def script_files():
 
 
 class NoTechniqueNamesInScripts(TempDirTest):
-    def test_scripts_read_names_from_the_table(self):
+    def assert_within_remaining(self, root, files, scan, remaining, at_least, advice):
+        """Every file under `root` spells at most its `remaining` count of names (none where unlisted)."""
         pattern = spellings()
-        files = script_files()
-        self.assertGreater(len(files), 30)
+        self.assertGreater(len(files), at_least)
         over = {}
         for rel in files:
-            found = literals_spelling(os.path.join(SCRIPTS, rel), pattern)
-            if len(found) > REMAINING.get(rel, 0):
+            found = scan(os.path.join(root, rel), pattern)
+            if len(found) > remaining.get(rel, 0):
                 over[rel] = [f"{line}: {text}" for line, text in found]
-        self.assertEqual(over, {}, "these scripts spell technique names: ask oitbench.techniques instead")
+        self.assertEqual(over, {}, advice)
+
+    def test_scripts_read_names_from_the_table(self):
+        self.assert_within_remaining(SCRIPTS, script_files(), literals_spelling, REMAINING, 30,
+                                     "these scripts spell technique names: ask oitbench.techniques instead")
 
     def test_cpp_outside_the_table_reads_names_from_it(self):
-        pattern = spellings()
-        files = cpp_files()
-        self.assertGreater(len(files), 100)
-        over = {}
-        for rel in files:
-            found = cpp_literals_spelling(os.path.join(MICRO, rel), pattern)
-            if len(found) > REMAINING_CPP.get(rel, 0):
-                over[rel] = [f"{line}: {text}" for line, text in found]
-        self.assertEqual(over, {}, "these C++ files spell technique names: ask micro/oit/techniques.hpp instead")
+        self.assert_within_remaining(MICRO, cpp_files(), cpp_literals_spelling, REMAINING_CPP, 100,
+                                     "these C++ files spell technique names: ask micro/oit/techniques.hpp instead")
 
     def test_the_cpp_check_finds_literals_but_not_comments(self):
         probe = self.path("probe.cpp")
