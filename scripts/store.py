@@ -88,7 +88,7 @@ def cmd_history(store, args):
         raise StoreError(f"--repo {args.repo}: no such folder")
     notes = []
     series = store_history.history(store, run_filter(args), args.experiment, args.case, args.order, args.alpha,
-                                   repo=args.repo, notes=notes)
+                                   repo=args.repo, notes=notes, statistic=args.statistic)
     for n in notes:
         print(f"note: {n}", file=sys.stderr)
     if not series:
@@ -194,6 +194,8 @@ def main(argv=None):
     p.add_argument("--case", help="case key pattern, SQL LIKE (%% any text): occupancy/unrolled/total/%%size=32")
     p.add_argument("--order", choices=store_history.ORDERS, default="date")
     p.add_argument("--alpha", type=cli.number(float, low=0.0, high=1.0, low_open=True, high_open=True), default=0.01, help="the change points' significance (default 0.01)")
+    p.add_argument("--statistic", choices=store_history.STATISTICS, default="median",
+                   help="each run's value the change points are found in: its samples' median (default) or mean")
     p.add_argument("--repo", default=store_history.default_repo(),
                    help="the git repository whose commit graph --order commit follows (default: the one these "
                    "scripts are in; where it does not know a run's commit, history orders by date and says so)")

@@ -3,7 +3,7 @@
 run 11 of 20 runs of `occupancy --quick`) and no step in 20 identical runs.
 
     scripts/store_history_goal.py collect POOL_DIR [--runs 60] [--every 3] [--exe build/oitbench]
-    scripts/store_history_goal.py trials POOL_DIR [--trials 10] [--seed 1] [--alpha 0.01]
+    scripts/store_history_goal.py trials POOL_DIR [--trials 10] [--seed 1] [--alpha 0.01] [--statistic median|mean]
 
 collect: RUNS real runs of `oitbench run occupancy --quick --set draws=D` into POOL_DIR/NNN-dD.csv (and
 NNN-dD_raw.csv), one in every EVERY with 70 draws and the others with 64, interleaved so the machine's drift
@@ -81,7 +81,7 @@ def read_pool(folder):
     return pool
 
 
-def run_trial(work, name, runs, alpha):
+def run_trial(work, name, runs, alpha, statistic):
     """{case_key: [(run index, ratio, p)]} of one trial's runs (a list of pool entries, in trial order)."""
     folder = os.path.join(work, name)
     os.makedirs(folder)
@@ -95,7 +95,8 @@ def run_trial(work, name, runs, alpha):
                 for r in rows:
                     w.writerow(dict(r, timestamp_utc=f"2026-01-{k + 1:02d}T00:00:00Z", draws=str(BASE)))
             store.ingest(copy)
-        series = store_history.history(store, queries.RunFilter(), "occupancy", alpha=alpha)
+        series = store_history.history(store, queries.RunFilter(), "occupancy", alpha=alpha,
+                                       statistic=statistic)
     for s in series:
         if len(s.rows) != len(runs):
             raise oitres.ResultsError(f"trial {name}: case {s.case_key} has {len(s.rows)} ok runs of {len(runs)}")
@@ -110,19 +111,19 @@ def trials(args):
     try:
         for t in range(args.trials):
             runs = rng.sample(pool[BASE], RUNS_PER_SIDE) + rng.sample(pool[STEP], RUNS_PER_SIDE)
-            for case, steps in run_trial(work, f"step{t}", runs, args.alpha).items():
+            for case, steps in run_trial(work, f"step{t}", runs, args.alpha, args.statistic).items():
                 found.setdefault(case, []).append([i for i, _, _ in steps] == [RUNS_PER_SIDE])
                 if args.verbose:
                     print(f"step{t} {case}: " + ", ".join(f"run {i + 1} x{r:.3f} p={p:.2g}" for i, r, p in steps))
             runs = rng.sample(pool[BASE], 2 * RUNS_PER_SIDE)
-            for case, steps in run_trial(work, f"flat{t}", runs, args.alpha).items():
+            for case, steps in run_trial(work, f"flat{t}", runs, args.alpha, args.statistic).items():
                 false.setdefault(case, []).append(bool(steps))
                 if args.verbose and steps:
                     print(f"flat{t} {case}: " + ", ".join(f"run {i + 1} x{r:.3f} p={p:.2g}" for i, r, p in steps))
     finally:
         shutil.rmtree(work, ignore_errors=True)
     print(f"pool {args.pool}: {len(pool[BASE])} runs of {BASE} draws, {len(pool[STEP])} of {STEP}; "
-          f"{args.trials} trials each, seed {args.seed}, alpha {args.alpha:g}")
+          f"{args.trials} trials each, seed {args.seed}, alpha {args.alpha:g}, each run's {args.statistic}")
     print("| case | step found at run 11 | a step in identical runs |")
     print("|---|---:|---:|")
     met = True
@@ -154,6 +155,8 @@ def main(argv=None):
     p.add_argument("--seed", type=cli.non_negative(int), default=1, help="the draw's seed (default 1)")
     p.add_argument("--alpha", type=cli.number(float, low=0.0, high=1.0, low_open=True, high_open=True),
                    default=0.01, help="the change points' significance (default 0.01, as store.py history)")
+    p.add_argument("--statistic", choices=store_history.STATISTICS, default="median",
+                   help="each run's value history finds the change points in (default median, as store.py history)")
     p.add_argument("-v", "--verbose", action="store_true", help="every change point of every trial")
     p.set_defaults(func=trials)
     args = ap.parse_args(argv)

@@ -76,11 +76,17 @@ class Series:
         self.case_key, self.rows, self.steps = case_key, rows, steps
 
 
+STATISTICS = ("median", "mean")
+
+
 def history(store, flt, experiment=None, case_like=None, order="date", alpha=0.01, min_size=3, repo=None,
-            notes=None):
+            notes=None, statistic="median"):
     """The Series of every case the filter matches. order "commit": by `repo`'s commit graph where it
     knows every run's commit, else by the date each commit was first run, with a line appended to
-    `notes` (a list) naming the commits it does not know."""
+    `notes` (a list) naming the commits it does not know. `statistic`: each run's value the change points
+    are found in, its samples' median or mean (a run without a mean uses its median)."""
+    if statistic not in STATISTICS:
+        raise ValueError(f"statistic {statistic!r}: expected one of {', '.join(STATISTICS)}")
     rows = [r for r in queries.case_results(store, flt, experiment, case_like)
             if r["status"] == "ok" and r["median_ms"]]
     first_seen = {}
@@ -103,8 +109,8 @@ def history(store, flt, experiment=None, case_like=None, order="date", alpha=0.0
     out = []
     for key in sorted(by_case):
         series = sorted(by_case[key], key=_order_key(order, first_seen, ranks))
-        medians = [r["median_ms"] for r in series]
-        steps = change_points(medians, alpha=alpha, min_size=min_size) if len(series) >= 2 * min_size else []
+        values = [r["mean_ms"] if statistic == "mean" and r["mean_ms"] else r["median_ms"] for r in series]
+        steps = change_points(values, alpha=alpha, min_size=min_size) if len(series) >= 2 * min_size else []
         out.append(Series(key, series, steps))
     return out
 

@@ -78,7 +78,7 @@ def case_results(store, flt, experiment=None, case_like=None, pass_name="total")
         more.append(pass_name)
     where = " AND ".join([cond] + extra)
     return store.query(
-        "SELECT r.run_id, r.case_key, r.status, r.median_ms, r.ci_lo_ms, r.ci_hi_ms, r.mad_ms, r.samples, "
+        "SELECT r.run_id, r.case_key, r.status, r.median_ms, r.mean_ms, r.ci_lo_ms, r.ci_hi_ms, r.mad_ms, r.samples, "
         "runs.first_utc, runs.git_sha, runs.driver, runs.gl_renderer, runs.gpu_driver_version, runs.mesa_version, "
         "runs.hostname, runs.machine_id FROM rows r JOIN runs ON runs.run_id = r.run_id "
         f"WHERE {where} ORDER BY r.case_key, runs.first_utc, r.run_id", params + more)
