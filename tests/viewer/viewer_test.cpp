@@ -103,8 +103,8 @@ TEST(Viewer, ShowsGeneratedAndPlySplatScenes) {
   for (const auto& [scene, technique] : {std::pair<std::string, std::string>{"splats", "GLOBAL-SORT"},
                                          std::pair<std::string, std::string>{"splats-ply", "BASE-IS"}}) {
     auto png = temp_dir("viewer-" + scene) / "shot.png";
-    auto r = run_oitbench({"view", "--scene", scene, "--detail", "small", "--size", "160x120", "--technique",
-                           technique, "--frames", "3", "--screenshot", png.string()},
+    auto r = run_oitbench({"view", "--scene", scene, "--detail", "small", "--size", "160x120", "--technique", technique,
+                           "--frames", "3", "--screenshot", png.string()},
                           180);
     ASSERT_EQ(r.exit_code, 0) << scene << ": " << r.err;
     EXPECT_TRUE(contains(r.err, technique + " ready")) << r.err;
