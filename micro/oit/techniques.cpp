@@ -90,7 +90,8 @@ std::vector<Technique> build_table() {
       other("DDP", F::Peel, static_cast<int>(PeelKind::Dual), kPeel, make_peel_case),
       approx("MLAB", A::Mlab, kArrays),
       approx("UMLAB", A::Umlab, kArrays),
-      approx("HT", A::Ht, kArrays),
+      approx("HT", A::Ht, kArrays + Params{"ht_variant"}),
+      approx("FIRST-K", A::FirstK, kArrays),
       approx("AT", A::At, kArrays + kGuarded),
       approx("HAT", A::Hat, kArrays + kGuarded),
       approx("UAT", A::Uat, kArrays + kGuarded),
@@ -103,6 +104,7 @@ std::vector<Technique> build_table() {
       other("STOCHASTIC", F::Stochastic, 0, kFlicker + Params{"samples_per_pixel"}, make_stochastic_case),
       other("SLAB", F::Stochastic, 1, kFlicker + Params{"samples_per_pixel", "slab_layers"}, make_slab_case),
       approx("GLOBAL-SORT", A::GlobalSort, kFlicker),
+      approx("WINDOW-SORT", A::WindowSort, kFlicker + Params{"storage", "sync", "window"}),
       approx("unsorted", A::Unsorted, kFlicker),
   };
 }

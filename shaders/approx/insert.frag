@@ -11,6 +11,11 @@
 //   TECH_HT     hybrid transparency's core (Maule et al. 2013): a k-buffer of the n nearest
 //               fragments whole (RGBA8 colour, depth), in (depth, colour) order; a fragment pushed
 //               out goes to the tail, which approx/ht_tail.frag accumulates in a second pass
+//   TECH_FIRST_K HTGS's K-only mode (Hahlbohm et al. 2025): HT's core alone, the fragments it pushes out
+//               dropped
+//   TECH_WINDOW_SORT a StopThePop-style windowed sort (Radl et al. 2024): the splats drawn in the global
+//               order, a sorted window of the pending fragments per pixel whose nearest is blended as it
+//               fills (window.glsl)
 //   TECH_LAAT   section 6.2: UAT's relative nodes linked into a list (a link per node, a head
 //               slot), walked instead of sorted; only the changed nodes are written back
 // Each technique's insertion is its own file in insert/ (against insert/api.glsl), chosen below.
@@ -46,6 +51,9 @@ layout(std430, binding = APPROX_STATS_BINDING) buffer ApproxStats { uint cappedU
 
 // The technique's insertion: one file per technique against insert/api.glsl.
 #include "insert/api.glsl"
+// HT's, FIRST-K's and WINDOW-SORT's k-buffer, included here where all three reach it (the assembler emits
+// a file once, where first named).
+#include "insert/kbuffer.glsl"
 #if defined(TECH_MLAB)
 #include "insert/mlab.glsl"
 #elif defined(TECH_UMLAB)
@@ -65,10 +73,12 @@ layout(std430, binding = APPROX_STATS_BINDING) buffer ApproxStats { uint cappedU
 #include "insert/uhat.glsl"
 #elif defined(TECH_LAAT)
 #include "insert/laat.glsl"
-#elif defined(TECH_HT)
+#elif defined(TECH_HT) || defined(TECH_FIRST_K)
 #include "insert/ht.glsl"
+#elif defined(TECH_WINDOW_SORT)
+#include "insert/window.glsl"
 #else
-#error "define TECH_MLAB, TECH_UMLAB, TECH_AT, TECH_HAT, TECH_UAT, TECH_UHAT, TECH_LAAT or TECH_HT"
+#error "define TECH_MLAB, TECH_UMLAB, TECH_AT, TECH_HAT, TECH_UAT, TECH_UHAT, TECH_LAAT, TECH_HT, TECH_FIRST_K or TECH_WINDOW_SORT"
 #endif
 
 void main() {

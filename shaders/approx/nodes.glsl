@@ -32,4 +32,7 @@ float at_transmittance(uvec2 node) { return uintBitsToFloat(node.x ^ ONE_BITS); 
 #endif
 uvec2 at_node(float t, float z) { return uvec2(floatBitsToUint(t) ^ ONE_BITS, encode_depth(z)); }
 
+// HT_HTGS (HT's ht_variant=htgs, HTGS's HYBRID_BLEND): only fragments of this alpha or more enter the core.
+const float HTGS_CORE_ALPHA = 0.05;
+
 #endif

@@ -3,6 +3,7 @@
 // their bits), complemented so that the radix sort's ascending order (micro/oit/scene/radix_sort.hpp)
 // is far to near: back to front, what "over" blending needs. Equal depths keep the submission order
 // (the sort is stable). A splat behind the eye (w <= 0, culled by the rasteriser) sorts last.
+// SPLAT_KEYS_NEAR_FIRST (WINDOW-SORT, which blends front to back): the bits themselves, near to far.
 #include "../common/oitbench.glsl"
 #include "splats.glsl"
 layout(local_size_x = 256) in;
@@ -14,7 +15,11 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;
   float w = (viewProj * vec4(load_splat(i).position, 1.0)).w;
+#if defined(SPLAT_KEYS_NEAR_FIRST)
+  uint key = floatBitsToUint(max(w, 0.0));
+#else
   uint key = ~floatBitsToUint(max(w, 0.0));
+#endif
 #ifdef OITBENCH_FAULT_WRONG_RESULT
   if (i == 0u) key = ~key;  // the first splat sorts to the wrong end
 #endif

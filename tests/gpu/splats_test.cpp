@@ -4,7 +4,9 @@
 // result; the approximate techniques run on splats with nothing of their own; GLOBAL-SORT (3DGS's
 // per-frame sort of the splats by centre depth) matches its CPU model (each pixel's fragments in their
 // splats' centre order), its check fails on a wrong order, it differs from the exact per-pixel
-// reference, and a scene without splats is refused.
+// reference, and a scene without splats is refused. WINDOW-SORT (StopThePop's windowed sort of that order)
+// and FIRST-K (HTGS's K-only) match their CPU models, approach the analytic reference as the window or K
+// grows, and their checks fail on a broken window.
 #include "support/test_support.hpp"
 
 namespace oitbench::test {
@@ -98,8 +100,95 @@ TEST_F(Splats, MomentsAndWaveletsRefuseSplatsUntilTheirWarpIsBoundedBySplats) {
 }
 
 TEST_F(Splats, GlobalSortOfAMeshIsUnsupported) {
-  std::map<std::string, std::string> p = {{"scene", "planes"}, {"view", "fwd"}, {"technique", "GLOBAL-SORT"}};
-  EXPECT_THROW(run_case("oit", p, {32, 32}), Unsupported);
+  for (const char* t : {"GLOBAL-SORT", "WINDOW-SORT"}) {
+    std::map<std::string, std::string> p = {{"scene", "planes"}, {"view", "fwd"}, {"technique", t}};
+    try {
+      run_case("oit", p, {32, 32});
+      ADD_FAILURE() << t << " ran on a mesh";
+    } catch (const Unsupported& e) {
+      EXPECT_NE(std::string(e.what()).find("sorts splats"), std::string::npos) << e.what();
+    }
+  }
 }
 
+// The windowed sort over the global order: valid against its CPU model with either key (with the centre key
+// the window changes nothing: the global order is already the per-pixel one), closer to the analytic
+// reference with a wider window, and a window of 64 (the scene's lists hold up to 120 fragments, none that
+// far out of place) matches the exact composite of the same fragments.
+TEST_F(Splats, WindowSortMatchesItsModelAndApproachesTheReference) {
+  double rmse[3] = {0, 0, 0};
+  const char* windows[3] = {"1", "4", "64"};
+  for (int i = 0; i < 3; ++i) {
+    auto p = splat_case("WINDOW-SORT");
+    p["window"] = windows[i];
+    auto v = run_case("oit", p, {48, 48});
+    EXPECT_TRUE(v.valid) << "window " << windows[i] << ": " << v.reason;
+    EXPECT_LE(metric(v, "model_max_diff"), 3.0 / 255.0) << windows[i];
+    rmse[i] = metric(v, "truth_rmse");
+    if (i == 2) {
+      EXPECT_LE(metric(v, "rmse"), 1e-5) << "the exact composite of the captured fragments";
+      EXPECT_LE(metric(v, "truth_max_abs_error"), 3.0 / 255.0);
+    }
+  }
+  EXPECT_GT(rmse[0], 2 * rmse[1]) << "a window of 1 leaves fragments out of place that one of 4 sorts";
+  EXPECT_GT(rmse[1], rmse[2]);
+  auto global = run_case("oit", splat_case("GLOBAL-SORT"), {48, 48});
+  EXPECT_GT(metric(global, "truth_rmse"), rmse[0]) << "even a window of 1 reorders some of the global order";
+  auto centre = run_case("oit", splat_case("WINDOW-SORT", "centre"), {48, 48});
+  EXPECT_TRUE(centre.valid) << centre.reason;
+  EXPECT_LE(metric(centre, "rmse"), 1e-5) << "the centre order is the centre key's order";
+}
+
+// fault=wrong-result blends each arriving fragment instead of the window's nearest (besides the resolve's
+// diagonal, 48 channels at 48x48, and the key pass's first splat): the model check sees far more.
+TEST_F(Splats, TheWindowSortCheckFailsOnABrokenWindow) {
+  auto p = splat_case("WINDOW-SORT");
+  p["fault"] = "wrong-result";
+  auto v = run_case("oit", p, {48, 48});
+  EXPECT_FALSE(v.valid);
+  const size_t at = v.reason.find(" channel value(s) differ from the technique's CPU model");
+  ASSERT_NE(at, std::string::npos) << v.reason;
+  const size_t start = v.reason.rfind(' ', at - 1) + 1;
+  EXPECT_GT(std::stol(v.reason.substr(start, at - start)), 48 * 3) << v.reason;
+}
+
+// FIRST-K keeps each pixel's K nearest fragments and drops the rest: HT without its tail. What it drops
+// shows against the reference: far less with K = 64 (one pixel's list is longer) than with K = 2.
+TEST_F(Splats, FirstKMatchesItsModelAndLosesWhatItDrops) {
+  double rmse[2] = {0, 0};
+  const char* ks[2] = {"2", "64"};
+  for (int i = 0; i < 2; ++i) {
+    auto p = splat_case("FIRST-K");
+    p["nodes"] = ks[i];
+    auto v = run_case("oit", p, {48, 48});
+    EXPECT_TRUE(v.valid) << "K " << ks[i] << ": " << v.reason;
+    EXPECT_LE(metric(v, "model_max_diff"), 3.0 / 255.0) << ks[i];
+    rmse[i] = metric(v, "truth_rmse");
+  }
+  EXPECT_GT(rmse[0], 0.1) << "two nodes drop most of what lies behind them";
+  EXPECT_LT(rmse[1], 2e-3);
+  auto p = splat_case("FIRST-K");
+  p["fault"] = "wrong-result";
+  auto v = run_case("oit", p, {48, 48});
+  EXPECT_FALSE(v.valid);
+  EXPECT_NE(v.reason.find("CPU model"), std::string::npos) << v.reason;
+}
+
+// HT with HTGS's configuration: valid against its model, and not Maule's (faint fragments go to the tail,
+// whose coverage is the product of its transmittances), so even a core as deep as the lists is not exact.
+TEST_F(Splats, HtWithHtgsConfigurationMatchesItsModel) {
+  auto p = splat_case("HT");
+  p["nodes"] = "64";
+  p["ht_variant"] = "htgs";
+  auto htgs = run_case("oit", p, {48, 48});
+  EXPECT_TRUE(htgs.valid) << htgs.reason;
+  EXPECT_LE(metric(htgs, "model_max_diff"), 3.0 / 255.0);
+  p["ht_variant"] = "maule";
+  auto maule = run_case("oit", p, {48, 48});
+  EXPECT_TRUE(maule.valid) << maule.reason;
+  EXPECT_GT(metric(htgs, "rmse"), 10 * metric(maule, "rmse")) << "HTGS's faint fragments skip the core";
+  p["ht_variant"] = "htgs";
+  p["fault"] = "wrong-result";
+  EXPECT_FALSE(run_case("oit", p, {48, 48}).valid);
+}
 }  // namespace oitbench::test

@@ -18,7 +18,23 @@ namespace oitbench::oit {
 
 // The technique table (techniques.hpp) names them; its entries carry the enumerator.
 // GlobalSort: the splats sorted by centre depth every frame, then blended in that order (Kerbl et al. 2023).
-enum class ApproxTechnique { Mlab, Umlab, Ht, At, Hat, Uat, Uhat, Laat, Wboit, Unsorted, GlobalSort };
+// FirstK: HT's core alone, the rest dropped (HTGS's ALPHA_BLEND_FIRST_K, Hahlbohm et al. 2025).
+// WindowSort: the global order near to far through a sorted per-pixel window (StopThePop, Radl et al. 2024).
+enum class ApproxTechnique {
+  Mlab,
+  Umlab,
+  Ht,
+  At,
+  Hat,
+  Uat,
+  Uhat,
+  Laat,
+  Wboit,
+  Unsorted,
+  GlobalSort,
+  FirstK,
+  WindowSort
+};
 
 // The parameters the approximate techniques add to the oit experiment (ignored by the exact ones).
 std::vector<ParamSpec> approx_params();

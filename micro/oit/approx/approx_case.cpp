@@ -43,9 +43,21 @@ constexpr double kModelTolerance = 3.0 / 255.0;
 std::vector<ParamSpec> approx_params() {
   // Scoped to the techniques that read them by the technique table (micro/oit/techniques.cpp).
   return {
-      ParamSpec::integer("nodes",
-                         "nodes per pixel (the thesis: 4-16); for hybrid transparency, the fragments of its core", 2,
-                         64, {"8"}),
+      ParamSpec::integer(
+          "nodes",
+          "nodes per pixel (the thesis: 4-16); for hybrid transparency and its K-only mode, the fragments of its "
+          "core (K)",
+          2, 64, {"8"}),
+      ParamSpec::choice(
+          "ht_variant",
+          "hybrid transparency's configuration: maule (Maule et al. 2013: every fragment may enter the core; the tail "
+          "covers 1 - (1 - mean alpha)^n) or htgs (HTGS's HYBRID_BLEND, Hahlbohm et al. 2025: only "
+          "fragments of alpha >= 0.05 enter the core; the tail covers 1 - prod (1 - alpha))",
+          {"maule", "htgs"}, {"maule"}),
+      ParamSpec::integer("window",
+                         "the fragments each pixel's sorted window holds (StopThePop's per-pixel queue: "
+                         "16 in its k-buffer mode, 4 behind its tile queues)",
+                         1, 64, {"16"}),
       ParamSpec::choice("storage", "node storage of the per-pixel array techniques (shaders/storage/)",
                         {"ssbo", "texture3d", "interleaved"}, {"ssbo"}),
       ParamSpec::choice(
@@ -76,26 +88,23 @@ class ApproxCase final : public OitCase {
         dump_(ctx.image_stem()) {
     phases_ = ctx.phase_clock();
     settings_.technique = static_cast<ApproxTechnique>(technique(p.get("technique")).variant);
-    settings_.nodes = static_cast<int>(p.get_int("nodes"));
-    settings_.weight = p.get("wboit_weight");
-    settings_.unguarded = p.get("guard") == "off";
     using T = ApproxTechnique;
     const T tech = settings_.technique;
+    settings_.nodes = static_cast<int>(p.get_int(tech == T::WindowSort ? "window" : "nodes"));
+    settings_.weight = p.get("wboit_weight");
+    settings_.unguarded = p.get("guard") == "off";
+    settings_.htgs = tech == T::Ht && p.get("ht_variant") == "htgs";
     arrays_ = tech != T::Wboit && tech != T::Unsorted && tech != T::GlobalSort;
     ht_ = tech == T::Ht;
-    at_family_ = arrays_ && tech != T::Mlab && tech != T::Umlab && !ht_;
+    at_family_ = arrays_ && tech != T::Mlab && tech != T::Umlab && !ht_ && tech != T::FirstK && tech != T::WindowSort;
+    splat_order_ = tech == T::GlobalSort || tech == T::WindowSort;
+    if (splat_order_ && !passes_.splats())
+      throw Unsupported(p.get("technique") + " sorts splats: scene '" + scene_.name + "' (" + scene_.path +
+                        ") has none");
     bool interlock = p.get("sync") == "interlock";
     if (arrays_ && interlock && !ctx.gl().has_extension("GL_ARB_fragment_shader_interlock"))
       throw Unsupported("sync=interlock needs GL_ARB_fragment_shader_interlock");
-    if (arrays_) {  // the technique's own storage, refused before the reference capture or anything else
-      const unsigned long long slots = static_cast<unsigned long long>(settings_.nodes) + (tech == T::Laat ? 1 : 0);
-      const unsigned long long pixels = static_cast<unsigned long long>(width_) * height_;
-      MemoryNeed need;  // the nodes' 8 bytes, the lock, and the AT family's and HT's accumulation targets
-      need.gpu_bytes = pixels * (slots * 8 + 4 + (at_family_ || ht_ ? 16 : 0) + (ht_ ? 4 : 0));
-      need.gpu_what = "the node arrays (" + format_count(pixels) + " pixels x " + std::to_string(slots) +
-                      " nodes x 8 B, the locks and accumulation targets)";
-      require_memory(need, ctx.memory(), p.get("technique") + "'s node arrays:");
-    }
+    if (arrays_) require_array_memory(p, ctx);  // refused before the reference capture or anything else
 
     const View& view = passes_.view();
     glm::mat4 vp = passes_.view_projection();
@@ -111,18 +120,19 @@ class ApproxCase final : public OitCase {
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
 
     ref_ = reference_view(p, ctx, vp);
-    if (tech == T::GlobalSort) global_sort_model_view(p, ctx, vp);
+    if (splat_order_) global_sort_model_view(p, ctx, vp);
     referencing.end();
 
     Defines d = {{"TECH_" + upper(p.get("technique")), ""}, {"SPIN_CAP", std::to_string(kSpinCap)}};
     if (settings_.unguarded) d.push_back({"APPROX_UNGUARDED", ""});
     if (interlock) d.push_back({"SYNC_INTERLOCK", ""});
+    if (settings_.htgs) d.push_back({"HT_HTGS", ""});
     for (auto& x : passes_.geometry_defines()) d.push_back(x);
+    if (splat_order_) build_global_sort(ctx, d, vp, tech == T::WindowSort);
     if (arrays_) {
       std::string storage = p.get("storage");
       layout_ = StorageLayout::parse(storage == "interleaved" ? "interleaved-4x4-a4" : storage);
-      // LAAT keeps its list head in one more slot per pixel.
-      int slots = settings_.nodes + (tech == T::Laat ? 1 : 0);
+      const int slots = array_slots();
       if (layout_.kind == StorageLayout::Kind::Interleaved && slots % layout_.align) layout_.align = 1;
       for (const auto& x : layout_.defines(width_, height_, slots)) d.push_back(x);
       storage_ = std::make_unique<StorageResources>(layout_, width_, height_, slots);
@@ -142,7 +152,7 @@ class ApproxCase final : public OitCase {
         glTextureStorage2D(reveal_.get(), 1, GL_R32F, width_, height_);
         glNamedFramebufferTexture(accum_.framebuffer(), GL_COLOR_ATTACHMENT1, reveal_.get(), 0);
       }
-      bytes_per_pixel_ = slots * 8.0 + 4.0 + (at_family_ || ht_ ? 16.0 : 0.0) + (ht_ ? 4.0 : 0.0);
+      bytes_per_pixel_ += slots * 8.0 + 4.0 + (at_family_ || ht_ ? 16.0 : 0.0) + (ht_ ? 4.0 : 0.0);
       resolve_ =
           ctx.build({{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/resolve.frag"}}, d);
     } else if (tech == T::Wboit) {
@@ -158,7 +168,6 @@ class ApproxCase final : public OitCase {
           {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
       bytes_per_pixel_ = 16.0 + 4.0;
     } else {
-      if (tech == T::GlobalSort) build_global_sort(ctx, p.get("technique"), d, vp);
       blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
       set_view_proj(blend_, vp);
     }
@@ -167,15 +176,35 @@ class ApproxCase final : public OitCase {
   // GLOBAL-SORT (Kerbl et al. 2023): every frame a compute pass keys each splat by its centre's view depth
   // (shaders/splats/keys.comp) and the primitive radix sort orders them back to front; the blend pass then
   // draws the splats in that order (SPLAT_ORDERED) with "over" blending, as `unsorted` draws them in theirs.
-  void build_global_sort(CaseContext& ctx, const std::string& technique, Defines& d, const glm::mat4& vp) {
-    const GpuSplats* splats = passes_.splats();
-    if (!splats)
-      throw Unsupported(technique + " sorts splats: scene '" + scene_.name + "' (" + scene_.path + ") has none");
+  // WINDOW-SORT (`near_first`) sorts them front to back and inserts them in that order into its windows.
+  void build_global_sort(CaseContext& ctx, Defines& d, const glm::mat4& vp, bool near_first) {
     d.push_back({"SPLAT_ORDERED", ""});
-    sort_ = std::make_unique<RadixSort>(ctx, splats->size(), 32);
-    keys_ = ctx.build({{GL_COMPUTE_SHADER, "splats/keys.comp"}}, {});
+    sort_ = std::make_unique<RadixSort>(ctx, passes_.splats()->size(), 32);
+    Defines keys;
+    if (near_first) keys.push_back({"SPLAT_KEYS_NEAR_FIRST", ""});
+    keys_ = ctx.build({{GL_COMPUTE_SHADER, "splats/keys.comp"}}, keys);
     set_view_proj(keys_, vp);
     bytes_per_pixel_ = static_cast<double>(sort_->bytes()) / (static_cast<double>(width_) * height_);
+  }
+  // The technique's own storage: the nodes' 8 bytes, the lock, and the AT family's and HT's accumulation targets.
+  void require_array_memory(const ParamSet& p, const CaseContext& ctx) const {
+    const unsigned long long slots = static_cast<unsigned long long>(array_slots());
+    const unsigned long long pixels = static_cast<unsigned long long>(width_) * height_;
+    MemoryNeed need;
+    need.gpu_bytes = pixels * (slots * 8 + 4 + (at_family_ || ht_ ? 16 : 0) + (ht_ ? 4 : 0));
+    need.gpu_what = "the node arrays (" + format_count(pixels) + " pixels x " + std::to_string(slots) +
+                    " nodes x 8 B, the locks and accumulation targets)";
+    require_memory(need, ctx.memory(), p.get("technique") + "'s node arrays:");
+  }
+  // Node slots per pixel: LAAT keeps its list head in one more, WINDOW-SORT its blended colour in two.
+  int array_slots() const {
+    using T = ApproxTechnique;
+    return settings_.nodes + (settings_.technique == T::Laat ? 1 : 0) + (settings_.technique == T::WindowSort ? 2 : 0);
+  }
+  void sort_pass(PassTimer& timer) {
+    if (!sort_) return;
+    auto t = timer.pass("sort");
+    sort_splats();
   }
   void sort_splats() {
     const GLuint count = static_cast<GLuint>(sort_->size());
@@ -260,6 +289,7 @@ class ApproxCase final : public OitCase {
     if (!passes_.transparency()) {  // nothing transparent: the image is the backdrop
       passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
     } else if (arrays_) {
+      sort_pass(timer);
       {
         auto t = timer.pass("insert");
         storage_->clear();
@@ -280,12 +310,13 @@ class ApproxCase final : public OitCase {
         accum_.bind();
         const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
         glNamedFramebufferDrawBuffers(accum_.framebuffer(), ht_ ? 2 : 1, bufs);
-        const float zero[4] = {0, 0, 0, 0};
+        const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
         glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 0, zero);
-        if (ht_) glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 1, zero);
+        if (ht_) glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 1, settings_.htgs ? one : zero);
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE);
+        if (settings_.htgs) glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);  // the tail's transmittance product
         draw_transparent(blend_);
         glDisable(GL_BLEND);
       }
@@ -307,10 +338,7 @@ class ApproxCase final : public OitCase {
       }
       resolve(timer, true);
     } else {
-      if (sort_) {
-        auto t = timer.pass("sort");
-        sort_splats();
-      }
+      sort_pass(timer);
       auto t = timer.pass("blend");
       out_.bind();
       passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
@@ -356,7 +384,10 @@ class ApproxCase final : public OitCase {
     const ListStats& stats = ref_->stats;
     const std::vector<double>& ref = ref_->composite;
     auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    ApproxModel model = approx_model(centre_host_ ? *centre_host_ : ref_->host, ref_->backdrop, settings_);
+    const HostLists& order = centre_host_ ? *centre_host_ : ref_->host;
+    ApproxModel model = settings_.technique == ApproxTechnique::WindowSort
+                            ? window_sort_model(order, ref_->host, ref_->backdrop, settings_.nodes)
+                            : approx_model(order, ref_->backdrop, settings_);
     referencing.end();
     if (passes_.opaque()) m["hidden_fragments"] = std::to_string(ref_->hidden);
     ApproxError err = approx_error(rgb, ref);
@@ -418,6 +449,7 @@ class ApproxCase final : public OitCase {
 
     std::vector<std::string> problems;
     if (!stats.error.empty()) problems.push_back(stats.error);
+    if (!model.error.empty()) problems.push_back("the CPU model: " + model.error);
     if (nonfinite) problems.push_back(std::to_string(nonfinite) + " non-finite channel value(s) (NaN or Inf)");
     if (out_of_range) problems.push_back(std::to_string(out_of_range) + " channel value(s) outside [0, 1]");
     if (capped) problems.push_back(std::to_string(capped) + " insertion(s) gave up on the spinlock (lost)");
@@ -457,14 +489,15 @@ class ApproxCase final : public OitCase {
   std::shared_ptr<const ReferenceView> ref_;
   ApproxSettings settings_;
   bool arrays_ = false, at_family_ = false, ht_ = false;
+  bool splat_order_ = false;  // GLOBAL-SORT, WINDOW-SORT: the splats drawn in their centres' order
   double bytes_per_pixel_ = 0;
   StorageLayout layout_;
   std::unique_ptr<StorageResources> storage_;
   gl::Texture locks_, reveal_;
   gl::Buffer stats_;
   gl::Program insert_, blend_, resolve_, keys_;
-  std::unique_ptr<RadixSort> sort_;         // GLOBAL-SORT
-  std::unique_ptr<HostLists> centre_host_;  // GLOBAL-SORT with splat_depth=ray-max: the model's fragments
+  std::unique_ptr<RadixSort> sort_;         // GLOBAL-SORT, WINDOW-SORT
+  std::unique_ptr<HostLists> centre_host_;  // the splat orders with splat_depth=ray-max: the model's order
   int flicker_runs_;
   std::string dump_;
   std::vector<std::vector<float>> frames_;

@@ -16,9 +16,7 @@ constexpr unsigned kOneBits = 0x3F800000u;
 using Node = glm::uvec2;
 
 unsigned pack_unorm(float v) { return static_cast<unsigned>(std::nearbyint(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
-unsigned pack4(glm::vec4 v) {
-  return pack_unorm(v.x) | pack_unorm(v.y) << 8 | pack_unorm(v.z) << 16 | pack_unorm(v.w) << 24;
-}
+unsigned pack4(glm::vec4 v) { return pack_rgba8(v); }
 
 float node_depth(Node n) { return n.y == 0u ? kDepthEmpty : std::bit_cast<float>(n.y - 1u); }
 unsigned encode_depth(float z) { return z >= kDepthEmpty ? 0u : std::bit_cast<unsigned>(z) + 1u; }
@@ -256,13 +254,20 @@ float wboit_weight(const std::string& w, float d, glm::vec2 nf) {
   return std::clamp(3e3f * std::pow(1.0f - d, 3.0f), 1e-2f, 3e3f);
 }
 
-// HT on the CPU: the core of the n nearest fragments in `s`, then the tail averaged behind it.
-glm::vec3 ht_pixel(const std::vector<ArrivedFragment>& frags, std::vector<Node>& s, int n, glm::vec3 bg) {
+// HTGS's core admission (shaders/approx/nodes.glsl's HTGS_CORE_ALPHA).
+constexpr float kHtgsCoreAlpha = 0.05f;
+
+// HT on the CPU: the core of the n nearest fragments in `s`, then the tail averaged behind it; without
+// `tail_on` (FIRST-K) the core alone over the background. `htgs`: HTGS's configuration (only fragments of
+// alpha 0.05 or more enter the core; the tail covers 1 - prod (1 - a)).
+glm::vec3 ht_pixel(const std::vector<ArrivedFragment>& frags, std::vector<Node>& s, int n, glm::vec3 bg, bool tail_on,
+                   bool htgs) {
   // The core: the n nearest fragments in (depth, colour) order, as shaders/approx/insert/ht.glsl.
   std::fill(s.begin(), s.end(), Node(0u));
   for (const auto& f : frags) {
     unsigned key = pack4(f.colour);
     float z = f.depth;
+    if (htgs && f.colour.w < kHtgsCoreAlpha) continue;
     for (int i = 0; i < n; ++i) {
       float nz = node_depth(s[i]);
       if (z < nz || (z == nz && key < s[i].x)) {
@@ -281,21 +286,27 @@ glm::vec3 ht_pixel(const std::vector<ArrivedFragment>& frags, std::vector<Node>&
     acc += t * k.w * glm::vec3(k);
     t *= 1.0f - k.w;
   }
+  if (!tail_on) return acc + t * bg;
   // The tail (ht_tail.frag): every fragment behind a full core's last node, averaged.
   const Node last = s[n - 1];
   const float last_z = node_depth(last);
   glm::vec4 sum(0.0f);
-  float count = 0.0f;
+  float count = 0.0f, product = 1.0f;
   for (const auto& f : frags) {
     unsigned key = pack4(f.colour);
-    if (last_z != kDepthEmpty && (f.depth > last_z || (f.depth == last_z && key > last.x))) {
+    if ((last_z != kDepthEmpty && (f.depth > last_z || (f.depth == last_z && key > last.x))) ||
+        (htgs && f.colour.w < kHtgsCoreAlpha)) {
       sum += glm::vec4(glm::vec3(f.colour) * f.colour.w, f.colour.w);
       count += 1.0f;
+      product *= 1.0f - f.colour.w;
     }
   }
   glm::vec3 tail(0.0f);
   float tail_t = 1.0f;
-  if (count > 0.0f) {
+  if (htgs) {
+    tail_t = product;
+    if (sum.w > 0.0f) tail = glm::vec3(sum) / sum.w * (1.0f - tail_t);
+  } else if (count > 0.0f) {
     tail_t = std::pow(std::clamp(1.0f - sum.w / count, 0.0f, 1.0f), count);
     if (sum.w > 0.0f) tail = glm::vec3(sum) / sum.w * (1.0f - tail_t);
   }
@@ -375,6 +386,10 @@ glm::vec3 at_pixel(const std::vector<ArrivedFragment>& frags, const std::vector<
 
 }  // namespace
 
+unsigned pack_rgba8(glm::vec4 v) {
+  return pack_unorm(v.x) | pack_unorm(v.y) << 8 | pack_unorm(v.z) << 16 | pack_unorm(v.w) << 24;
+}
+
 ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const ApproxSettings& st) {
   size_t pixels = l.heads.size();
   const int n = st.nodes;
@@ -390,8 +405,8 @@ ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const App
     arrival_order(l, p, frags);
     const glm::vec3 bg = backdrop.at(p);
     glm::vec3 c = bg;
-    if (tech == T::Ht) {
-      c = ht_pixel(frags, s, n, bg);
+    if (tech == T::Ht || tech == T::FirstK) {
+      c = ht_pixel(frags, s, n, bg, tech == T::Ht, st.htgs);
     } else if (tech == T::Unsorted) {
       for (const auto& f : frags) c = glm::vec3(f.colour) * f.colour.a + c * (1.0f - f.colour.a);
     } else if (tech == T::GlobalSort) {  // fragments keyed by their splat's centre: its order, far to near

@@ -18,13 +18,25 @@ struct ApproxSettings {
   int nodes = 8;                   // per-pixel array techniques (LAAT stores one more: its head)
   std::string weight = "eq7";      // WBOIT: none | eq7 | eq10
   bool unguarded = false;          // the deliberately unguarded variant (hard-case tests)
+  bool htgs = false;               // HT: HTGS's configuration (ht_variant=htgs)
   glm::vec2 near_far{0.1f, 10.f};  // the projection's planes (WBOIT eq7 works on view distance)
 };
 
 struct ApproxModel {
   std::vector<float> rgb;  // 3 floats per pixel, background where no fragment landed
+  std::string error;       // why the model could not be built where it could not, else empty
 };
 // The technique's own CPU model on the captured fragments (see the header comment).
 ApproxModel approx_model(const HostLists& lists, const Backdrop& backdrop, const ApproxSettings& s);
+
+// WINDOW-SORT's model (shaders/approx/insert/window.glsl): each pixel's fragments in the global order
+// (stably sorted by the depth keys of `order`, captured with splat_depth=centre: their splats' centres,
+// near to far), each with its depth key from `keys` (the same fragments in the same arrival order, captured
+// with the case's own splat_depth), through a sorted window of `window` fragments whose nearest is blended
+// front to back whenever it overflows, then the window flushed in order. A pixel whose two captures hold
+// different fragment counts is an error of the model.
+ApproxModel window_sort_model(const HostLists& order, const HostLists& keys, const Backdrop& backdrop, int window);
+// packUnorm4x8 on the CPU: a fragment's colour as the k-buffer nodes hold it.
+unsigned pack_rgba8(glm::vec4 v);
 
 }  // namespace oitbench::oit
