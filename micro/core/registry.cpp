@@ -72,10 +72,12 @@ std::vector<ParamSpec> Registry::framework_params() {
       "validator must fail), compile-error, hang (an endless shader loop for the watchdog), lose-fragment (oit's "
       "capture drops the fragments of the diagonal, so its capture checks must fail), no-opaque-depth (oit's "
       "geometry passes skip the opaque effect's depth test, so its occlusion checks must fail), shadow-slice-off "
-      "(the self-shadowing opacity map draws every slice one layer too far, so its map check must fail)";
+      "(the self-shadowing opacity map draws every slice one layer too far, so its map check must fail), path-pop "
+      "(oit's popping path adds 4/255 to an 8x8 block of every other frame, so the exact techniques' popping check "
+      "must fail)";
   fault.defaults = {"none"};
-  fault.allowed = {"none",          "wrong-result",    "compile-error",   "hang",
-                   "lose-fragment", "no-opaque-depth", "shadow-slice-off"};
+  fault.allowed = {"none",          "wrong-result",    "compile-error",    "hang",
+                   "lose-fragment", "no-opaque-depth", "shadow-slice-off", "path-pop"};
   ParamSpec seed;
   seed.name = "seed";
   seed.description = "seed of the case's random inputs";

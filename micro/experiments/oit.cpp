@@ -24,6 +24,7 @@
 #include "oit/scene/scene_passes.hpp"
 #include "oit/slab/slab.hpp"
 #include "oit/splats/gpu_splats.hpp"
+#include "oit/splats/popping.hpp"
 #include "oit/techniques.hpp"
 #include "oit/wavelets/wavelets.hpp"
 
@@ -165,6 +166,7 @@ class OitExperiment final : public Experiment {
                                  x.block_sort,
                                  x.order_check,
                                  splat_depth_param()};
+    for (auto& a : popping_params()) ps.push_back(std::move(a));
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     for (auto& a : peel_params()) ps.push_back(std::move(a));
     for (auto& a : moment_params()) ps.push_back(std::move(a));
@@ -225,6 +227,18 @@ class OitExperiment final : public Experiment {
         {"flicker", T::Number, "", "per-pixel variance across flicker_runs frames, mean over pixels"},
         {"flicker_max", T::Number, "", "its largest pixel"},
         {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"},
+        // splat scenes: popping over a camera path (micro/oit/splats/popping.hpp), empty elsewhere
+        {"popping", T::Number, "",
+         "splat scenes: the image's change between neighbouring frames of the popping path beyond the analytic "
+         "reference's, max(0, |f(k+1) - f(k)| - |r(k+1) - r(k)|) of the largest channel, mean over pixels and pairs "
+         "(stochastic techniques: their per-frame noise included)"},
+        {"popping_max", T::Number, "", "splat scenes: the largest pixel's popping"},
+        {"popping_pixels", T::Integer, "",
+         "splat scenes: pixels whose popping passes 2/255 in some pair of frames (exact per-pixel techniques with "
+         "splat_depth=ray-max: any is invalid)"},
+        {"popping_ms", T::Number, "ms",
+         "splat scenes: wall time of the popping path (its frames, read-backs and analytic references; after "
+         "validation, outside the timed passes)"},
         // self-shadowing (micro/oit/scene/shadow_map.cpp), only where the scene declares it
         {"shadow_rmse", T::Number, "",
          "self-shadowing: rmse of the opacity map's transmittance against the deep shadow map's (exact) at every "
@@ -292,7 +306,10 @@ class OitExperiment final : public Experiment {
     const long long pixels = std::max(1LL, static_cast<long long>(res.width) * res.height);
     return static_cast<int>(std::clamp((1LL << 20) / pixels, 2LL, 8LL));
   }
-  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override { return make_oit_case(p, ctx); }
+  // Every technique's case on a splat scene measures its popping after its validation.
+  std::unique_ptr<CaseInstance> prepare(const ParamSet& p, CaseContext& ctx) override {
+    return with_popping(make_oit_case(p, ctx), p, ctx);
+  }
 };
 
 }  // namespace

@@ -90,19 +90,31 @@ void composite_tile(int tx, int ty, const std::uint32_t* first, const std::uint3
       std::sort(l.begin(), l.end(), [](const Fragment& a, const Fragment& b) {
         return a.key < b.key || (a.key == b.key && a.splat < b.splat);
       });
-      glm::dvec3 colour(0.0);
-      double t = 1.0;
-      for (const Fragment& f : l) {
+      glm::dvec3 colour(0.0), before_c(0.0);
+      double t = 1.0, before_t = 0.0, before_a = 0.0;
+      bool tie = false;
+      for (size_t i = 0; i < l.size(); ++i) {
+        const Fragment& f = l[i];
         const double alpha = o.quantise_rgba8 ? unorm8(f.alpha) : f.alpha;
-        const glm::dvec3 c = proj[f.splat]->colour;
+        const glm::dvec3 raw = proj[f.splat]->colour;
+        const glm::dvec3 c = o.quantise_rgba8 ? glm::dvec3(unorm8(raw.r), unorm8(raw.g), unorm8(raw.b)) : raw;
         const double next = t * (1.0 - alpha);
         if (o.min_transmittance > 0 && next < o.min_transmittance) break;
-        colour += t * alpha * (o.quantise_rgba8 ? glm::dvec3(unorm8(c.r), unorm8(c.g), unorm8(c.b)) : c);
+        // swapping two neighbours moves the pixel by T a_i a_j (c_i - c_j)
+        const glm::dvec3 swap = glm::abs(before_c - c) * (before_t * before_a * alpha);
+        if (i > 0 && f.key - l[i - 1].key <= kSplatKeyTie * std::abs(f.key) &&
+            std::max({swap.r, swap.g, swap.b}) > kSplatTieEffect)
+          tie = true;
+        colour += t * alpha * c;
+        before_c = c;
+        before_t = t;
+        before_a = alpha;
         t = next;
       }
       const size_t at = static_cast<size_t>(y) * c.width + x;
       out.rgba[at] = glm::dvec4(colour + t * o.background, 1.0 - t);
       out.fragments[at] = static_cast<std::uint32_t>(l.size());
+      out.tied[at] = tie;
     }
 }
 
@@ -186,6 +198,7 @@ SplatImage splat_reference(const SplatList& splats, const SplatCamera& c, const 
   out.height = c.height;
   out.rgba.assign(static_cast<size_t>(c.width) * c.height, glm::dvec4(o.background, 0.0));
   out.fragments.assign(out.rgba.size(), 0);
+  out.tied.assign(out.rgba.size(), 0);
   // Tiles are independent (each writes its own pixels): workers take them in turn, each with its own
   // lists, and the image is the same whatever the number of workers.
   const int tiles_x = (c.width + kTile - 1) / kTile, tiles_y = (c.height + kTile - 1) / kTile;

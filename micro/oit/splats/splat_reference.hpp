@@ -93,10 +93,19 @@ struct SplatReferenceOptions {
   unsigned threads = 0;  // workers over the tiles; 0: one per hardware thread (the image is the same)
 };
 
+// A pixel whose order a float key may not decide: two neighbouring fragments (in the reference's order) whose
+// keys are within kSplatKeyTie of each other, relative, and whose swap would move the pixel by more than
+// kSplatTieEffect in a channel (T a_i a_j |c_i - c_j|). The GPU's float32 keys (a few ulps, 1e-7 relative,
+// apart) can order such a pair either way: scenes/splats.json seen 1 degree off its view has one at pixel
+// (187,70), keys 3.1542271 and 3.1542277, whose swap moves the pixel by 0.021.
+inline constexpr double kSplatKeyTie = 1e-5;
+inline constexpr double kSplatTieEffect = 1.0 / 255.0;
+
 struct SplatImage {
   int width = 0, height = 0;
   std::vector<glm::dvec4> rgba;          // row-major from the bottom row (glReadPixels' order)
   std::vector<std::uint32_t> fragments;  // per pixel: its fragments (alpha >= 1/255), early termination or not
+  std::vector<std::uint8_t> tied;        // per pixel: 1 where its order is a float tie (above)
   glm::dvec4 at(int x, int y) const { return rgba[static_cast<size_t>(y) * width + x]; }
 };
 SplatImage splat_reference(const SplatList& splats, const SplatCamera& camera, const SplatReferenceOptions& options);
