@@ -754,8 +754,10 @@ def plot_oit(data):
             else error_col
         approx = gcol is not None and any((value(r, gcol) or 0) > FLOOR for r in grows)
         memory = approx and any(value(r, "bytes_per_pixel") is not None for r in grows)
+        # Splat scenes with a camera path: popping against time and against the error (docs/splats.md#popping).
+        popping = gcol == "truth_rmse" and any(value(r, "popping") is not None for r in grows)
         kinds = ["passes"] + (["error-time"] if approx else []) + (["error-memory"] if memory else []) + \
-            (["format"] if formats else [])
+            (["format"] if formats else []) + (["popping-time", "popping-error"] if popping else [])
         panels.append([(k, grows, title, gcol) for k in kinds])
     flat = [p for group in panels for p in group]
     wide = any(len({case_id(r, data.params) for r in g[0][1]}) > MANY_CASES or effects_vary(g[0][1])
@@ -766,7 +768,9 @@ def plot_oit(data):
         # One view per row, its panels side by side; a view with many cases gets its bars a row of their own.
         rows = []
         for group in panels:
-            rows += [group[:1], group[1:]] if wide else [group]
+            main = [p for p in group if not p[0].startswith("popping")]
+            pops = [p for p in group if p[0].startswith("popping")]  # a row of their own, after the view's
+            rows += ([main[:1], main[1:]] if wide else [main]) + ([pops] if pops else [])
         fig, axes = rows_grid([len(r) for r in rows], height=4.2)
     params = [p for p in data.params if p not in key_cols]
     legend_from = []
@@ -786,6 +790,10 @@ def plot_oit(data):
             error_vs_time(ax, grows, gcol, title, params, labels)
         elif kind == "error-memory":
             error_vs_memory(ax, grows, gcol, title, params, labels)
+        elif kind == "popping-time":
+            error_vs_time(ax, grows, "popping", title, params, labels)
+        elif kind == "popping-error":
+            popping_vs_error(ax, grows, gcol, title, params, labels)
         else:
             format_cost(ax, grows, title)
     exact_only = all(len(g) == 1 for g in panels) and error_col is not None
@@ -879,6 +887,18 @@ def error_vs_memory(ax, rows, column, title, params, labels):
     scatter_front(ax, points, "bytes per pixel (storage; 0 drawn at 1)", column,
                   (f"{column} against memory" if len(title) > 30 else f"{column} against memory: {title}") +
                   " (red: Pareto front)", sized=False)
+
+
+def popping_vs_error(ax, rows, column, title, params, labels):
+    """Splat scenes: popping over the camera path against the error of the case's own view (`column`,
+    truth_rmse), with the front of nothing both steadier and more exact: the global sort's error and its
+    popping are two faces of one order."""
+    points = [(max(p[0], FLOOR),) + p[1:] for p in error_points(rows, "popping", params, labels, column)]
+    largest = scatter_front(ax, points, f"{column} against the analytic reference (floor {FLOOR:g})", "popping", "",
+                            sized=True)
+    note = f"\n(marker area: bytes/pixel, largest {largest:g})" if largest else ""
+    ax.set_title(("popping against error" if len(title) > 30 else f"popping against error: {title}") +
+                 f" (red: Pareto front){note}")
 
 
 def stacked_passes(ax, rows, totals, params, labels, title, legend=True):

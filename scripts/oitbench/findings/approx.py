@@ -226,6 +226,11 @@ def section_lines(f):
     return lines
 
 
+def popping_cells(r):
+    """A splat row's popping (mean) and the pixels that pop (a dash where it has none)."""
+    return [f_err(num(r, "popping")), f_num(num(r, "popping_pixels"))]
+
+
 def section_splats(f):
     """Issue 29: the 3DGS global sort (the preset's baseline, named by the rows' baseline column) per million
     splats, and every technique's time over it, its error against the analytic reference and bytes per pixel."""
@@ -251,20 +256,25 @@ def section_splats(f):
             per_million.append((key, t0 / (splats / 1e6)))
         if gs:
             body.append([key[0], key[1], key[2], f"{plot.oit_label(gs[0])} (median of {len(gs)} row(s))", f_ms(t0),
-                         f_x(1.0), f_err(num(gs[0], "truth_rmse")), f_num(num(gs[0], "bytes_per_pixel"))])
+                         f_x(1.0), f_err(num(gs[0], "truth_rmse"))] + popping_cells(gs[0]) +
+                        [f_num(num(gs[0], "bytes_per_pixel"))])
         for r in sorted((r for r in g if r["technique"] not in base), key=ms):
             speedup = num(r, "speedup")
             over = 1.0 / speedup if speedup else ratio(ms(r), t0)  # paired in its interleaving group where it can be
             body.append([key[0], key[1], key[2], plot.oit_label(r) + (f" {r['capture']}" if r.get("capture") and
                                                                      r["technique"] in EXACT else ""),
-                         f_ms(ms(r)), f_x(over), f_err(num(r, "truth_rmse")), f_num(num(r, "bytes_per_pixel"))])
+                         f_ms(ms(r)), f_x(over), f_err(num(r, "truth_rmse"))] + popping_cells(r) +
+                        [f_num(num(r, "bytes_per_pixel"))])
     r0 = rows[0]
     lines += [f"`presets/{name}.csv` ({f.reps(name, r0)}): per scene (splat count) and depth key, each valid "
               "case's `total` median (ms), its time over the global sort's (the preset's baseline, paired in its interleaving group: 1 / speedup; below 1 faster; the global sort's row: the median of its rows, one per interleaving group), "
               "its rmse against the analytic reference of its key (`truth_rmse`; empty where the technique does not "
-              "report it yet) and its bytes per pixel. Popping is not a row metric yet.", ""]
-    lines += table(["scene", "splat_depth", "resolution", "case", "ms", "over global sort", "truth rmse",
-                    "bytes/px"], body, [False] * 4 + [True] * 4)
+              "report it yet), its popping over the camera path (`popping`: the mean over pixels and neighbouring "
+              "frames of the image's change beyond the analytic reference's; `popping_pixels`: pixels that pop by "
+              "more than 2/255; a dash where the row has none, [docs/splats.md](../../docs/splats.md#popping)) and its "
+              "bytes per pixel.", ""]
+    lines += table(["scene", "splat_depth", "resolution", "case", "ms", "over global sort", "truth rmse", "popping",
+                    "popping px", "bytes/px"], body, [False] * 4 + [True] * 6)
     for key, t in per_million:
         lines.append(f"- The global sort on {key[0]} ({key[1]}, {key[2]}): {f_ms(t)} ms per million splats.")
     lines.append("")
