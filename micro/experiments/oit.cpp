@@ -218,6 +218,9 @@ class OitExperiment final : public Experiment {
         {"geometric_bad_pixels", T::Integer, "",
          "pixels off the geometric composite with the fragment format's quantisation by more than the tolerance; "
          "splat scenes: off the analytic splat reference"},
+        {"splat_tied_pixels", T::Integer, "",
+         "splat scenes: pixels whose analytic order is a float tie (neighbouring keys within 1e-5 relative that a "
+         "float key may order either way): their tolerance grows by what swapping the tied pairs moves them"},
         {"ambiguous_pixels", T::Integer, "",
          "pixels left out of the geometric comparison: a plane edge, the near or the far plane at the pixel centre"},
         // approximate techniques (micro/oit/approx/approx_case.cpp)

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -117,6 +118,32 @@ TEST(Popping, TheReferenceMarksTheFloatTiesThatMatter) {
   EXPECT_GT(tied_pixels(0.0f, 0.8f), 8);
   EXPECT_EQ(tied_pixels(0.01f, 0.8f), 0);
   EXPECT_EQ(tied_pixels(0.0f, 0.05f), 0);  // 0.05 x 0.05 x 1 < 1/255
+}
+
+// The slack splat_check allows at a tied pixel is what the GPU's other order of the tie gives: the same two
+// splats submitted the other way round (equal keys: the submission order decides) move each tied pixel by at
+// most its tie_slack, and by more than a check's tolerance somewhere; untied pixels have no slack.
+TEST(Popping, ATiesSlackBoundsTheOtherOrder) {
+  View v;
+  v.eye = {0, 0, 4};
+  const SplatCamera cam = splat_camera(v, 32, 32, 0.1);
+  Splat a;
+  a.scale = glm::vec3(0.1f);
+  a.opacity = 0.8f;
+  a.colour = {1, 0, 0};
+  Splat b = a;
+  b.colour = {0, 0, 1};
+  const SplatImage one = splat_reference({a, b}, cam, {});
+  const SplatImage other = splat_reference({b, a}, cam, {});
+  double largest = 0;
+  for (size_t p = 0; p < one.rgba.size(); ++p) {
+    const glm::dvec3 e = glm::abs(glm::dvec3(one.rgba[p]) - glm::dvec3(other.rgba[p]));
+    const double d = std::max({e.r, e.g, e.b});
+    largest = std::max(largest, d);
+    EXPECT_LE(d, one.tie_slack[p] + kSplatTieEffect) << "pixel " << p;  // a smaller swap is not a tie
+    if (!one.tied[p]) EXPECT_EQ(one.tie_slack[p], 0.0f);
+  }
+  EXPECT_GT(largest, 0.1);
 }
 
 }  // namespace

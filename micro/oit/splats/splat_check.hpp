@@ -16,7 +16,9 @@ namespace oitbench::oit {
 
 struct SplatCheck {
   double rmse = 0, max_abs_error = 0;  // over every colour channel
-  size_t bad_pixels = 0;               // a channel more than the tolerance off
+  size_t bad_pixels = 0;               // a channel more than the tolerance (plus the pixel's tie slack) off
+  size_t tied_pixels = 0;              // pixels whose order is a float tie (splat_reference.hpp): their
+                                       // tolerance grows by what swapping the tied pairs moves them
   std::string first_bad;
 };
 

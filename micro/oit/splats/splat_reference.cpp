@@ -93,6 +93,7 @@ void composite_tile(int tx, int ty, const std::uint32_t* first, const std::uint3
       glm::dvec3 colour(0.0), before_c(0.0);
       double t = 1.0, before_t = 0.0, before_a = 0.0;
       bool tie = false;
+      double slack = 0;
       for (size_t i = 0; i < l.size(); ++i) {
         const Fragment& f = l[i];
         const double alpha = o.quantise_rgba8 ? unorm8(f.alpha) : f.alpha;
@@ -103,8 +104,10 @@ void composite_tile(int tx, int ty, const std::uint32_t* first, const std::uint3
         // swapping two neighbours moves the pixel by T a_i a_j (c_i - c_j)
         const glm::dvec3 swap = glm::abs(before_c - c) * (before_t * before_a * alpha);
         if (i > 0 && f.key - l[i - 1].key <= kSplatKeyTie * std::abs(f.key) &&
-            std::max({swap.r, swap.g, swap.b}) > kSplatTieEffect)
+            std::max({swap.r, swap.g, swap.b}) > kSplatTieEffect) {
           tie = true;
+          slack += std::max({swap.r, swap.g, swap.b});
+        }
         colour += t * alpha * c;
         before_c = c;
         before_t = t;
@@ -115,6 +118,7 @@ void composite_tile(int tx, int ty, const std::uint32_t* first, const std::uint3
       out.rgba[at] = glm::dvec4(colour + t * o.background, 1.0 - t);
       out.fragments[at] = static_cast<std::uint32_t>(l.size());
       out.tied[at] = tie;
+      out.tie_slack[at] = static_cast<float>(slack);
     }
 }
 
@@ -199,6 +203,7 @@ SplatImage splat_reference(const SplatList& splats, const SplatCamera& c, const 
   out.rgba.assign(static_cast<size_t>(c.width) * c.height, glm::dvec4(o.background, 0.0));
   out.fragments.assign(out.rgba.size(), 0);
   out.tied.assign(out.rgba.size(), 0);
+  out.tie_slack.assign(out.rgba.size(), 0.0f);
   // Tiles are independent (each writes its own pixels): workers take them in turn, each with its own
   // lists, and the image is the same whatever the number of workers.
   const int tiles_x = (c.width + kTile - 1) / kTile, tiles_y = (c.height + kTile - 1) / kTile;

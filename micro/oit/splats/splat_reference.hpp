@@ -106,6 +106,7 @@ struct SplatImage {
   std::vector<glm::dvec4> rgba;          // row-major from the bottom row (glReadPixels' order)
   std::vector<std::uint32_t> fragments;  // per pixel: its fragments (alpha >= 1/255), early termination or not
   std::vector<std::uint8_t> tied;        // per pixel: 1 where its order is a float tie (above)
+  std::vector<float> tie_slack;          // per pixel: the sum of its tied pairs' swap effects (0: none)
   glm::dvec4 at(int x, int y) const { return rgba[static_cast<size_t>(y) * width + x]; }
 };
 SplatImage splat_reference(const SplatList& splats, const SplatCamera& camera, const SplatReferenceOptions& options);
