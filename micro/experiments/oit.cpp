@@ -73,9 +73,10 @@ ExactParams exact_params() {
       "max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)", 0, 4096, {"0"});
   ParamSpec cs_group =
       ParamSpec::choice("cs_group",
-                        "compute resolve's work group in pixels (8-wide rows by default; PLATFORM.md: a "
-                        "stream-form resolve was miscompiled with 4x4 groups on llvmpipe)",
-                        {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}, {"8x1"});
+                        "compute resolve's work group in pixels; sides that are multiples of 4 (8x8, the default, "
+                        "and 4x4) run in 4x4 blocks as a fragment shader's vectors do, others (8x1, ...) in rows "
+                        "(shaders/resolve/resolve.comp)",
+                        {"8x1", "8x8", "4x4", "16x1", "32x1", "64x1"}, {"8x8"});
   ParamSpec auto_cache = ParamSpec::choice("bma_auto_cache",
                                            "on: reads and writes the per-driver choice cache "
                                            "($XDG_CACHE_HOME/oitbench/bma_auto.json); off calibrates every case afresh",

@@ -89,8 +89,10 @@ TEST_F(OitCompute, OrderCheckedResolvesMatchTheCpuReference) {
 }
 
 TEST_F(OitCompute, ComputeGroupShapesAndDeepMergePaths) {
-  // Load-then-sort is correct in every group shape (the stream form was not, with 4x4 groups).
-  for (const char* group : {"8x8", "4x4"}) {
+  // Load-then-sort is correct in every group shape (the stream form was not, with 4x4 groups): 8x8 (the
+  // default) and 4x4 lay invocations over 4x4-pixel blocks, 8x1 and 64x1 over rows (resolve.comp's
+  // group_pixel(); a mapping that skips or repeats a pixel leaves pixels unresolved, and invalid).
+  for (const char* group : {"8x1", "4x4", "64x1"}) {
     auto p = small("hairball", "rev", "CS-IS");
     p["cs_group"] = group;
     auto v = run_case("oit", p);
