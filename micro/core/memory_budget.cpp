@@ -159,4 +159,13 @@ void require_memory(const MemoryNeed& need, const MemoryLimits& limits, const st
   if (auto why = memory_refusal(need, limits); !why.empty()) throw Unsupported(what + " " + why);
 }
 
+MemoryNeed combined(MemoryNeed a, const MemoryNeed& b) {
+  auto join = [](const std::string& x, const std::string& y) { return x.empty() ? y : y.empty() ? x : x + " + " + y; };
+  a.gpu_bytes += b.gpu_bytes;
+  a.cpu_bytes += b.cpu_bytes;
+  a.gpu_what = join(a.gpu_what, b.gpu_what);
+  a.cpu_what = join(a.cpu_what, b.cpu_what);
+  return a;
+}
+
 }  // namespace oitbench

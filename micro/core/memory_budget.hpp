@@ -35,6 +35,9 @@ struct MemoryNeed {
   std::string gpu_what, cpu_what;
 };
 
+// Two needs held at once: the bytes added, the texts joined with " + ".
+MemoryNeed combined(MemoryNeed a, const MemoryNeed& b);
+
 // Empty when `need` fits `limits`; else the reason the case is refused, naming the estimate and the
 // limit: "needs 9.6 GiB of CPU memory for ... (402 M fragments x 24 B); limit 6.2 GiB (MemAvailable)".
 std::string memory_refusal(const MemoryNeed& need, const MemoryLimits& limits);

@@ -221,14 +221,15 @@ std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, cons
   const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
   const MemoryLimits limits = ctx.memory();
   auto guard = [=](size_t pool) {
-    require_memory(fragment_memory(kind, format, with_counts, pool, pixels, budget.host_copies), limits,
-                   "a pool of " + format_count(pool) + " fragments");
+    require_memory(combined(fragment_memory(kind, format, with_counts, pool, pixels, budget.host_copies), budget.held),
+                   limits, "a pool of " + format_count(pool) + " fragments");
   };
   // The scene's estimate first: nothing is allocated or drawn for a case that cannot be held.
   if (budget.expected > 0) {
-    require_memory(
-        fragment_memory(kind, format, with_counts, budget.expected + budget.expected / 8, pixels, budget.host_copies),
-        limits, "~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives):");
+    require_memory(combined(fragment_memory(kind, format, with_counts, budget.expected + budget.expected / 8, pixels,
+                                            budget.host_copies),
+                            budget.held),
+                   limits, "~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives):");
     if (budget.expected >= kListEnd)
       throw Unsupported("~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives): " +
                         "the capture indexes fragments with 32 bits (at most " + format_count(kListEnd - 1) + ")");

@@ -183,6 +183,7 @@ MemoryNeed fragment_memory(CaptureStorage kind, FragFormat format, bool with_cou
 struct FragmentBudget {
   unsigned long long expected = 0;
   int host_copies = 1;
+  MemoryNeed held = {};  // what the case holds beside the fragments (a splat scene's splats), in every check
 };
 
 // `with_counts`: PPLL also counts each pixel's fragments (BMA); PPPA always does.

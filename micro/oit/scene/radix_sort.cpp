@@ -24,7 +24,7 @@ RadixSort::RadixSort(const CaseContext& ctx, size_t count, int bits) : count_(co
     split_.push_back(ctx.build({{GL_COMPUTE_SHADER, "lines/split.comp"}}, {{phase, ""}}));
 }
 
-size_t RadixSort::bytes() const { return (7 * count_ + count_ / 256 + 2) * sizeof(unsigned); }
+size_t RadixSort::bytes_for(size_t count) { return (7 * count + count / 256 + 2) * sizeof(unsigned); }
 
 void RadixSort::sort() const {
   const GLuint count = static_cast<GLuint>(count_), groups = (count + 255) / 256;

@@ -25,7 +25,8 @@ class RadixSort {
   const gl::Buffer& indices_in() const { return index0_; }
   const gl::Buffer& sorted_keys() const { return bits_ == 0 ? keys0_ : keys_[(bits_ - 1) % 2]; }
   const gl::Buffer& sorted_indices() const { return bits_ == 0 ? index0_ : index_[(bits_ - 1) % 2]; }
-  size_t bytes() const;  // GPU memory of its buffers
+  size_t bytes() const { return bytes_for(count_); }  // GPU memory of its buffers
+  static size_t bytes_for(size_t count);              // a sort of `count` pairs' buffers, before it is made
 
  private:
   size_t count_;

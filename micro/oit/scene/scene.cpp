@@ -928,8 +928,10 @@ SceneDesc load_scene(const std::string& name_or_path) {
 
 void check_model_files(const SceneDesc& scene) { check_model_files_of(scene); }
 
-Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque,
-                unsigned long long max_bytes) {
+namespace {
+
+// Each object's parameters at `detail` (its "small" overrides applied).
+std::vector<json> object_params(const SceneDesc& scene, Detail detail) {
   std::vector<json> params;
   for (const auto& o : scene.objects) {
     json p = o.params;
@@ -937,6 +939,28 @@ Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool sp
       for (const auto& [k, v] : o.small.items()) p[k] = v;
     params.push_back(std::move(p));
   }
+  return params;
+}
+
+}  // namespace
+
+double scene_splat_count(const SceneDesc& scene, Detail detail) {
+  const std::vector<json> params = object_params(scene, detail);
+  double splats = 0;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    std::string why;
+    const std::string& g = scene.objects[i].generator;
+    if (g == "ply")
+      splats += estimate_ply(scene, i, params[i], why).splats;
+    else if (g == "splats")
+      splats += estimate_object(scene.objects[i], params[i], why).splats;
+  }
+  return splats;
+}
+
+Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque,
+                unsigned long long max_bytes) {
+  const std::vector<json> params = object_params(scene, detail);
   // Bound the work before any of it: the procedural objects' sizes from their parameters (a model's
   // once its file is read, before its instances are made).
   MeshEstimate total;

@@ -120,6 +120,9 @@ struct Mesh {
 void check_model_files(const SceneDesc& scene);
 
 inline constexpr unsigned long long kMaxMeshBytes = 4ull << 30;
+// The splats build_mesh would make of `scene` at `detail` (its "splats" objects' counts, its "ply" objects'
+// header counts), counted before anything is built; 0 for a scene without splats. A bad PLY file is a SceneError.
+double scene_splat_count(const SceneDesc& scene, Detail detail);
 Mesh build_mesh(const SceneDesc& scene, const View& view, Detail detail, bool split_opaque = false,
                 unsigned long long max_bytes = kMaxMeshBytes);
 

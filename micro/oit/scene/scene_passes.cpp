@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "oit/scene/coverage_estimate.hpp"
 #include "shaders/scene/bindings.h"
 
 namespace oitbench::oit {
@@ -112,6 +113,12 @@ ScenePasses::ScenePasses(const ParamSet& p, CaseContext& ctx)
   }
   const bool opaque = has("opaque");
   const Detail detail = p.get("detail") == "small" ? Detail::Small : Detail::Full;
+  // A splat scene too large for the case's memory is refused from its splat count, before it is built
+  // (10^7 splats are 2.5 GB while they build and upload).
+  if (const double splats = scene_splat_count(scene_, detail); splats > 0)
+    require_memory(
+        splat_scene_memory(splats), ctx.memory(),
+        "scene '" + scene_.name + "' (" + format_count(static_cast<unsigned long long>(splats)) + " splats):");
   // Built once per run for every case of this scene, view and effects (core/shared_cache.hpp).
   geometry_ = scene_geometry(ctx, scene_, view_, detail, opaque, has("transparency"));
   check_splats(p);
