@@ -11,6 +11,7 @@
 #include "oit/reference/image_io.hpp"
 #include "oit/reference/visible_capture.hpp"
 #include "oit/scene/coverage_estimate.hpp"
+#include "oit/splats/splat_check.hpp"
 #include "shaders/stochastic/bindings.h"
 
 namespace oitbench::oit {
@@ -181,6 +182,10 @@ CapturedViewCase::ModelValidation CapturedViewCase::validate_against(
     m["flicker_pixels"] = std::to_string(f.changed);
   }
   if (!dump_.empty()) write_result_images(dump_, mv.rgb, ref, width_, height_);
+  // Splat scenes: the error against the analytic reference, reported (an approximation is not held to it).
+  auto splat_referencing = PhaseClock::Scope(phases_, Phase::Reference);
+  report_splat_check(check_against_splats(*view_.fx, mv.rgb, 3, width_, height_, tolerance), tolerance, m, nullptr);
+  splat_referencing.end();
   merge_shadow_check(m, mv.problems, view_.fx->validate_shadow());
   if (!mv.stats.error.empty()) mv.problems.push_back(mv.stats.error);
   return mv;

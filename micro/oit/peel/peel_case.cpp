@@ -18,6 +18,7 @@
 #include "oit/scene/gpu_mesh.hpp"
 #include "oit/scene/scene.hpp"
 #include "oit/scene/scene_passes.hpp"
+#include "oit/splats/splat_check.hpp"
 #include "oit/techniques.hpp"
 #include "shaders/peel/bindings.h"
 
@@ -305,6 +306,8 @@ class PeelCase final : public OitCase {
     m["nonfinite"] = std::to_string(nonfinite);
     m["model_max_diff"] = fmt(model_max);
     if (!dump_.empty()) write_result_images(dump_, rgb, ref, width_, height_);
+    // Splat scenes: the error against the analytic reference, reported (held to the CPU models above).
+    report_splat_check(check_against_splats(fx_, rgb, 3, width_, height_, kTolerance), kTolerance, m, nullptr);
 
     std::vector<std::string> problems;
     merge_shadow_check(m, problems, fx_.validate_shadow());
