@@ -74,10 +74,11 @@ std::vector<ParamSpec> Registry::framework_params() {
       "geometry passes skip the opaque effect's depth test, so its occlusion checks must fail), shadow-slice-off "
       "(the self-shadowing opacity map draws every slice one layer too far, so its map check must fail), path-pop "
       "(oit's popping path adds 4/255 to an 8x8 block of every other frame, so the exact techniques' popping check "
-      "must fail)";
+      "must fail), no-early-stop (oit's ordered techniques blend every fragment although early_stop asks them to "
+      "stop, so their checks against references that stop must fail)";
   fault.defaults = {"none"};
-  fault.allowed = {"none",          "wrong-result",    "compile-error",    "hang",
-                   "lose-fragment", "no-opaque-depth", "shadow-slice-off", "path-pop"};
+  fault.allowed = {"none",          "wrong-result",     "compile-error", "hang",         "lose-fragment",
+                   "no-opaque-depth", "shadow-slice-off", "path-pop",      "no-early-stop"};
   ParamSpec seed;
   seed.name = "seed";
   seed.description = "seed of the case's random inputs";

@@ -15,6 +15,7 @@
 #include "core/registry.hpp"
 #include "oit/approx/approx.hpp"
 #include "oit/capture/fragment_storage.hpp"
+#include "oit/case_support.hpp"
 #include "oit/moments/moments.hpp"
 #include "oit/oit_case.hpp"
 #include "oit/peel/peel.hpp"
@@ -166,7 +167,8 @@ class OitExperiment final : public Experiment {
                                  x.frag_depth,
                                  x.block_sort,
                                  x.order_check,
-                                 splat_depth_param()};
+                                 splat_depth_param(),
+                                 early_stop_param()};
     for (auto& a : popping_params()) ps.push_back(std::move(a));
     for (auto& a : approx_params()) ps.push_back(std::move(a));
     for (auto& a : peel_params()) ps.push_back(std::move(a));

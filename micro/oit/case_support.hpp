@@ -7,9 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "core/params.hpp"
 #include "core/registry.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_objects.hpp"
+#include "gl/shader.hpp"
 #include "oit/scene/shadow_map.hpp"
 
 namespace oitbench::oit {
@@ -44,6 +46,39 @@ inline void merge_shadow_check(std::map<std::string, std::string>& metrics, std:
                                const ShadowCheck& shadow) {
   metrics.insert(shadow.metrics.begin(), shadow.metrics.end());
   problems.insert(problems.end(), shadow.problems.begin(), shadow.problems.end());
+}
+
+// 3DGS's early termination (Kerbl et al. 2023), an option of the ordered techniques (the technique table
+// says which read it): front to back, the fragment that would take the transmittance below the threshold
+// is not blended, nor any after it. 0: off, every fragment blended.
+inline ParamSpec early_stop_param() {
+  ParamSpec s = ParamSpec::text(
+      "early_stop",
+      "3DGS's early termination (Kerbl et al. 2023): the ordered techniques composite front to back and stop at the "
+      "fragment that would take the transmittance below this threshold (not blended, nor any after it; 1e-4 is "
+      "3DGS's); 0: off, every fragment blended. Validated against references that stop at the same threshold",
+      {"0"});
+  s.kind = ParamSpec::Kind::Number;
+  s.min = 0;
+  s.max = 0.5;
+  return s;
+}
+// The case's early_stop threshold (0: off, or a technique that does not read it).
+inline double early_stop_of(const ParamSet& p) { return p.has("early_stop") ? std::stod(p.get("early_stop")) : 0.0; }
+
+// A double as a GLSL float literal (a define's value): 9 significant digits, always with an exponent.
+inline std::string glsl_float(double v) {
+  std::ostringstream s;
+  s.precision(8);
+  s << std::scientific << v;
+  return s.str();
+}
+
+// The EARLY_STOP define of a resolve that stops at `threshold` (nothing when 0); fault=no-early-stop keeps the
+// front-to-back composite but stops nowhere (its threshold 0), so the checks against stopping references must fail.
+inline Defines early_stop_defines(double threshold, const std::string& fault) {
+  if (threshold <= 0) return {};
+  return {{"EARLY_STOP", fault == "no-early-stop" ? "0.0" : glsl_float(threshold)}};
 }
 
 // The end of every case's validate(): valid when nothing is wrong, the problems joined as the reason.

@@ -11,6 +11,7 @@
 #include "oit/peel/peel.hpp"
 #include "oit/scene/scene.hpp"
 #include "oit/slab/slab.hpp"
+#include "oit/splats/gpu_splats.hpp"
 #include "oit/wavelets/wavelets.hpp"
 
 namespace oitbench::oit {
@@ -42,6 +43,7 @@ const Params kPeel = {"max_layers", "tie_rule"};
 const Params kFlicker = {"flicker_runs"};
 const Params kArrays = kFlicker + Params{"nodes", "storage", "sync"};  // the per-pixel node arrays
 const Params kGuarded = {"guard"};
+const Params kEarlyStop = {"early_stop"};  // 3DGS's early termination: the ordered techniques
 
 Technique exact(std::string name, S scheme, std::string sort, std::optional<ResolveSort> rs, const Params& params,
                 bool quick) {
@@ -69,20 +71,27 @@ Technique other(std::string name, F family, int variant, const Params& params, C
 Technique approx(std::string name, ApproxTechnique v, const Params& params) {
   return other(std::move(name), F::Approximate, static_cast<int>(v), params, make_approx_case);
 }
+// A technique that orders splats as a whole (primitives: splats): unsupported on a scene without them.
+Technique splats_only(Technique t) {
+  t.primitives = TechniquePrimitives::Splats;
+  return t;
+}
 
 std::vector<Technique> build_table() {
   using R = ResolveSort;
   using A = ApproxTechnique;
+  // The insertion resolves (IS, IMS) and the CPU's composite front to back and stop early where asked.
+  const Params kInsertionStop = kInsertion + kEarlyStop;
   return {
-      exact("BASE-IS", S::Base, "IS", R::IS, kInsertion, true),
-      exact("BASE-IMS", S::Base, "IMS", R::IMS, kInsertion, false),
+      exact("BASE-IS", S::Base, "IS", R::IS, kInsertionStop, true),
+      exact("BASE-IMS", S::Base, "IMS", R::IMS, kInsertionStop, false),
       exact("BASE-RBS-L", S::Base, "RBS-L", R::RBS_L, kRegistersLocal, true),
-      exact("BMA-IS", S::Bma, "IS", R::IS, kInsertion, true),
-      exact("BMA-IMS", S::Bma, "IMS", R::IMS, kInsertion, false),
+      exact("BMA-IS", S::Bma, "IS", R::IS, kInsertionStop, true),
+      exact("BMA-IMS", S::Bma, "IMS", R::IMS, kInsertionStop, false),
       exact("BMA-RBS-L", S::Bma, "RBS-L", R::RBS_L, kRegistersLocal, true),
-      exact("CPU-NATIVE", S::Cpu, "NATIVE", std::nullopt, kCaptured, true),
-      exact("CS-IS", S::Compute, "IS", R::IS, kInsertion + kCompute, false),
-      exact("CS-IMS", S::Compute, "IMS", R::IMS, kInsertion + kCompute, false),
+      exact("CPU-NATIVE", S::Cpu, "NATIVE", std::nullopt, kCaptured + kEarlyStop, true),
+      exact("CS-IS", S::Compute, "IS", R::IS, kInsertionStop + kCompute, false),
+      exact("CS-IMS", S::Compute, "IMS", R::IMS, kInsertionStop + kCompute, false),
       exact("CS-RBS-L", S::Compute, "RBS-L", R::RBS_L, kRegistersLocal + kCompute, false),
       exact("RBS-G", S::Global, "RBS", R::RBS_G, kRegisters, false),
       exact("BMA-AUTO", S::Bma, "AUTO", std::nullopt, kShaderResolve + Params{"block", "bma_auto_cache"}, false),
@@ -103,8 +112,8 @@ std::vector<Technique> build_table() {
             make_woit_case),
       other("STOCHASTIC", F::Stochastic, 0, kFlicker + Params{"samples_per_pixel"}, make_stochastic_case),
       other("SLAB", F::Stochastic, 1, kFlicker + Params{"samples_per_pixel", "slab_layers"}, make_slab_case),
-      approx("GLOBAL-SORT", A::GlobalSort, kFlicker),
-      approx("WINDOW-SORT", A::WindowSort, kFlicker + Params{"storage", "sync", "window"}),
+      splats_only(approx("GLOBAL-SORT", A::GlobalSort, kFlicker + kEarlyStop)),
+      splats_only(approx("WINDOW-SORT", A::WindowSort, kFlicker + Params{"storage", "sync", "window"})),
       approx("unsorted", A::Unsorted, kFlicker),
   };
 }
@@ -170,6 +179,13 @@ std::vector<std::string> techniques_reading(const std::string& param) {
   return out;
 }
 
+std::vector<std::string> technique_names_on_meshes(TechniqueFamily family) {
+  std::vector<std::string> out;
+  for (const auto& t : techniques())
+    if (t.family == family && t.primitives == TechniquePrimitives::Any) out.push_back(t.name);
+  return out;
+}
+
 const Technique* bma_twin(const Technique& t) {
   if (t.scheme != S::Base && t.scheme != S::Bma) return nullptr;
   const S other_scheme = t.scheme == S::Base ? S::Bma : S::Base;
@@ -180,7 +196,14 @@ const Technique* bma_twin(const Technique& t) {
 
 std::unique_ptr<OitCase> make_oit_case(const ParamSet& p, CaseContext& ctx) {
   try {
-    return technique(p.get("technique")).make(p, ctx);
+    const Technique& t = technique(p.get("technique"));
+    if (t.primitives == TechniquePrimitives::Splats) {
+      const SceneDesc scene = load_scene(p.get("scene"));
+      if (!scene_has_splats(scene))
+        throw Unsupported(t.name + " draws only splats (the technique table's primitives: splats): scene '" +
+                          scene.name + "' (" + scene.path + ") has none");
+    }
+    return t.make(p, ctx);
   } catch (const SceneError& e) {
     throw std::runtime_error(std::string("oit: ") + e.what());
   }
@@ -230,6 +253,10 @@ std::string reference_label(TechniqueReference reference) {
       return "exact-or-peel-model";
   }
   return "?";
+}
+
+std::string primitives_label(TechniquePrimitives primitives) {
+  return primitives == TechniquePrimitives::Splats ? "splats" : "any";
 }
 
 namespace {
@@ -312,7 +339,8 @@ std::string techniques_json() {
                     {"params", t.params},
                     {"default", t.in_default},
                     {"quick", t.in_quick},
-                    {"reference", reference_label(t.reference())}});
+                    {"reference", reference_label(t.reference())},
+                    {"primitives", primitives_label(t.primitives)}});
   }
   nlohmann::ordered_json out = {
       {"format", 1},

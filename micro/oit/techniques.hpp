@@ -21,6 +21,10 @@ enum class TechniqueFamily { Exact, Peel, Approximate, Moments, Stochastic };
 enum class ResolveScheme { None, Base, Bma, Compute, Global, Cpu };
 // What a case's image must match to be valid.
 enum class TechniqueReference { Exact, CpuModel, ExactOrPeelModel };
+// What a technique draws: any scene's primitives, or only splats (it orders splats as a whole, as the 3DGS
+// global sort does): make_oit_case refuses a scene without splats as Unsupported, and tests that walk every
+// technique over meshes leave it out by this property.
+enum class TechniquePrimitives { Any, Splats };
 
 using CaseFactory = std::unique_ptr<OitCase> (*)(const ParamSet&, CaseContext&);
 
@@ -34,6 +38,7 @@ struct Technique {
   std::vector<std::string> params;          // the technique parameters it reads, sorted
   bool in_default = false;                  // in the default grid of `technique`
   bool in_quick = false;                    // in the --quick grid
+  TechniquePrimitives primitives = TechniquePrimitives::Any;
   CaseFactory make = nullptr;
 
   TechniqueReference reference() const;
@@ -55,6 +60,8 @@ const std::string& default_technique();
 std::vector<std::string> technique_names(TechniqueFamily family);
 // The techniques that read `param`, in table order (a parameter spec's only_when list).
 std::vector<std::string> techniques_reading(const std::string& param);
+// The techniques of `family` that draw any scene (primitives Any): those a walk over mesh scenes runs.
+std::vector<std::string> technique_names_on_meshes(TechniqueFamily family);
 // The same technique with the other of BASE/BMA, or nullptr where it has no such twin.
 const Technique* bma_twin(const Technique& t);
 // The case for any technique; a malformed scene is a std::runtime_error starting "oit: file:line:column:".
@@ -63,6 +70,7 @@ std::unique_ptr<OitCase> make_oit_case(const ParamSet& p, CaseContext& ctx);
 std::string family_label(TechniqueFamily family);  // exact, peel, approximate, moments, stochastic
 std::string scheme_label(ResolveScheme scheme);    // BASE, BMA, CS, G, CPU, or empty
 std::string reference_label(TechniqueReference reference);
+std::string primitives_label(TechniquePrimitives primitives);  // any, splats
 // What the `technique` parameter's description says, from the table: the exact resolves by scheme and
 // sort, then each other family's techniques by name.
 std::string techniques_description();

@@ -6,6 +6,7 @@
 #define APPROX_LOCK_IMAGE_UNIT 1  // r32ui per-pixel spinlocks
 #define APPROX_STATS_BINDING 1    // SSBO: capped (lost) insertions
 #define APPROX_ACCUM_UNIT 2       // texture unit: the AT blend pass's or WBOIT's accumulation
-#define APPROX_REVEAL_UNIT 3      // texture unit: WBOIT's revealage
+#define APPROX_REVEAL_UNIT 3      // texture unit: WBOIT's revealage (GLOBAL-SORT's early stop: its transmittance)
+#define APPROX_TRANSMITTANCE_IMAGE_UNIT 2  // r32f: GLOBAL-SORT's early stop, each pixel's transmittance
 
 #endif

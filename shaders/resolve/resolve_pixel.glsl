@@ -15,6 +15,9 @@
 //   SORT_RBS_G: the same blocks sorted in place in the list's nodes, merged from global memory
 //               (rbs.glsl) (RBS-G)
 // micro/oit/resolve/resolve_sort.cpp names the same files for the `sort_source` column.
+//   EARLY_STOP (IS, IMS; the early_stop parameter, a float threshold): 3DGS's early termination (Kerbl
+//               et al. 2023): the sorted fragments composited front to back ("under"), stopping at the
+//               fragment that would take the transmittance below EARLY_STOP (not blended, nor any after it)
 // Expects: a storage include, `vec3 backdrop` (set per pixel from backdrop.glsl's backdrop_colour()).
 
 vec3 blend_over(vec3 c, FRAG_T frag) {
@@ -54,6 +57,21 @@ int frag_count;  // the pixel's fragments: a run-time loop bound, so the sorts w
 #if defined(SORT_IMS) && MAX_FRAGS > 32
 #include "../sorts/merge.glsl"
 #endif
+#if defined(EARLY_STOP)
+// frags[0, n) far to near, composited from the near end; the backdrop shows through what is left.
+vec3 composite_front_to_back(int n) {
+  vec3 c = vec3(0.0);
+  float t = 1.0;
+  for (int i = n - 1; i >= 0; --i) {
+    vec4 k = frag_colour(frags[i]);
+    float next = t * (1.0 - k.a);
+    if (next < EARLY_STOP) break;
+    c += t * k.a * k.rgb;
+    t = next;
+  }
+  return c + t * backdrop;
+}
+#endif
 vec3 resolve_pixel(uint node) {
   int n = 0;
 #if defined(SORT_ORDER_CHECK)
@@ -89,9 +107,13 @@ vec3 resolve_pixel(uint node) {
   else
 #endif
   sort_insertion();
+#if defined(EARLY_STOP)
+  return composite_front_to_back(n);
+#else
   vec3 c = backdrop;
   for (int i = 0; i < n; ++i) c = blend_over(c, frags[i]);
   return c;
+#endif
 }
 #else
 #error "define SORT_IS, SORT_IMS, SORT_RBS or SORT_RBS_G"

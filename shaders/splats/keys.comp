@@ -3,7 +3,8 @@
 // their bits), complemented so that the radix sort's ascending order (micro/oit/scene/radix_sort.hpp)
 // is far to near: back to front, what "over" blending needs. Equal depths keep the submission order
 // (the sort is stable). A splat behind the eye (w <= 0, culled by the rasteriser) sorts last.
-// SPLAT_KEYS_NEAR_FIRST (WINDOW-SORT, which blends front to back): the bits themselves, near to far.
+// SPLAT_KEYS_NEAR_FIRST (WINDOW-SORT, and GLOBAL-SORT with early_stop: both blend front to back): the bits
+// themselves, near to far.
 #include "../common/oitbench.glsl"
 #include "splats.glsl"
 layout(local_size_x = 256) in;

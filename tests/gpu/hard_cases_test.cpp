@@ -25,14 +25,10 @@ std::string data(const std::string& name) { return std::string(OITBENCH_TEST_DAT
 
 const std::vector<std::string> kExact = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS", "CPU-NATIVE"};
 
-// The approximate techniques that draw meshes: GLOBAL-SORT (3DGS's global sort) and WINDOW-SORT
-// (StopThePop's windowed sort of that order) order splats and are unsupported on a scene without them
-// (gpu.Splats checks both).
+// The approximate techniques that draw meshes: the technique table's primitives leave out those that
+// draw only splats (GLOBAL-SORT, 3DGS's global sort, and WINDOW-SORT, StopThePop's windowed sort: unsupported on a scene without them, gpu.Splats).
 std::vector<std::string> approximate_on_meshes() {
-  std::vector<std::string> t;
-  for (const auto& a : oit::technique_names(oit::TechniqueFamily::Approximate))
-    if (a != "GLOBAL-SORT" && a != "WINDOW-SORT") t.push_back(a);
-  return t;
+  return oit::technique_names_on_meshes(oit::TechniqueFamily::Approximate);
 }
 
 std::vector<std::string> all_techniques() {

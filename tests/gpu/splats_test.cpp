@@ -4,9 +4,11 @@
 // result; the approximate techniques run on splats with nothing of their own; GLOBAL-SORT (3DGS's
 // per-frame sort of the splats by centre depth) matches its CPU model (each pixel's fragments in their
 // splats' centre order), its check fails on a wrong order, it differs from the exact per-pixel
-// reference, and a scene without splats is refused. WINDOW-SORT (StopThePop's windowed sort of that order)
-// and FIRST-K (HTGS's K-only) match their CPU models, approach the analytic reference as the window or K
-// grows, and their checks fail on a broken window.
+// reference, and a scene without splats is refused (the technique table's primitives). WINDOW-SORT
+// (StopThePop's windowed sort of that order) and FIRST-K (HTGS's K-only) match their CPU models, approach
+// the analytic reference as the window or K grows, and their checks fail on a broken window. 3DGS's early
+// termination (early_stop) in the ordered techniques matches references that stop at the same threshold.
+#include "oit/techniques.hpp"
 #include "support/test_support.hpp"
 
 namespace oitbench::test {
@@ -62,10 +64,13 @@ TEST_F(Splats, ApproximateTechniquesRunThroughTheSameRasteriser) {
     EXPECT_TRUE(v.valid) << t << ": " << v.reason;
   }
   // the approximations held to their own models report their error against the analytic reference
-  for (const char* t : {"MLAB", "HT", "WBOIT", "unsorted"}) {
+  for (const char* t : {"MLAB", "HT", "WBOIT", "unsorted", "STOCHASTIC", "SLAB"}) {
     auto v = run_case("oit", splat_case(t), {48, 48});
     EXPECT_GT(metric(v, "truth_rmse"), 0.0) << t;
   }
+  // depth peeling run to completion is exact: its analytic error is the exact techniques'
+  auto dp = run_case("oit", splat_case("DP"), {48, 48});
+  EXPECT_LE(metric(dp, "truth_max_abs_error"), 2.0 / 255.0) << dp.reason;
 }
 
 TEST_F(Splats, GlobalSortMatchesItsModelNotTheExactReference) {
@@ -105,9 +110,42 @@ TEST_F(Splats, GlobalSortOfAMeshIsUnsupported) {
     try {
       run_case("oit", p, {32, 32});
       ADD_FAILURE() << t << " ran on a mesh";
-    } catch (const Unsupported& e) {
-      EXPECT_NE(std::string(e.what()).find("sorts splats"), std::string::npos) << e.what();
+    } catch (const Unsupported& e) {  // from the technique table's primitives, not from the technique's name
+      EXPECT_NE(std::string(e.what()).find("primitives: splats"), std::string::npos) << e.what();
     }
+  }
+  for (const auto& t : oit::techniques())
+    if (t.name == "GLOBAL-SORT" || t.name == "WINDOW-SORT") EXPECT_EQ(t.primitives, oit::TechniquePrimitives::Splats);
+}
+
+// 3DGS's early termination (early_stop): each ordered technique composites front to back and stops at the
+// fragment that would take the transmittance below the threshold, matching references that stop there (the
+// exact ones the analytic splat reference, GLOBAL-SORT its CPU model). At 0.3 the test scene's dense pixels
+// stop; the same case blending every fragment (fault=no-early-stop) is another image, and its checks fail.
+TEST_F(Splats, EarlyStopMatchesReferencesThatStopAndTheirChecksFailWithoutIt) {
+  for (const char* t : {"BASE-IS", "BMA-IMS", "CS-IS", "CPU-NATIVE", "GLOBAL-SORT"}) {
+    auto p = splat_case(t);
+    p["early_stop"] = "0.3";
+    auto v = run_case("oit", p, {48, 48});
+    EXPECT_TRUE(v.valid) << t << ": " << v.reason;
+    if (std::string(t) != "GLOBAL-SORT") EXPECT_EQ(v.metrics.at("geometric_bad_pixels"), "0") << t;
+    p["fault"] = "no-early-stop";
+    auto broken = run_case("oit", p, {48, 48});
+    EXPECT_FALSE(broken.valid) << t << ": blending every fragment passed the checks of early_stop=0.3";
+    if (std::string(t) == "GLOBAL-SORT")
+      EXPECT_NE(broken.reason.find("CPU model"), std::string::npos) << broken.reason;
+    else
+      EXPECT_GT(std::stol(broken.metrics.at("geometric_bad_pixels")), 0) << t << ": " << broken.reason;
+  }
+}
+
+// 3DGS's own threshold, written as 3DGS writes it (1e-4: a GLSL literal in the resolve's EARLY_STOP).
+TEST_F(Splats, EarlyStopAt3dgsThresholdIsValid) {
+  for (const char* t : {"BASE-IS", "GLOBAL-SORT"}) {
+    auto p = splat_case(t);
+    p["early_stop"] = "1e-4";
+    auto v = run_case("oit", p, {48, 48});
+    EXPECT_TRUE(v.valid) << t << ": " << v.reason;
   }
 }
 

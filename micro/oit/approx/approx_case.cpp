@@ -105,6 +105,7 @@ class ApproxCase final : public OitCase {
     if (arrays_ && interlock && !ctx.gl().has_extension("GL_ARB_fragment_shader_interlock"))
       throw Unsupported("sync=interlock needs GL_ARB_fragment_shader_interlock");
     if (arrays_) require_array_memory(p, ctx);  // refused before the reference capture or anything else
+    if (tech == T::GlobalSort) plan_global_sort(ctx, p);  // its sort and early_stop's targets
 
     const View& view = passes_.view();
     glm::mat4 vp = passes_.view_projection();
@@ -128,7 +129,7 @@ class ApproxCase final : public OitCase {
     if (interlock) d.push_back({"SYNC_INTERLOCK", ""});
     if (settings_.htgs) d.push_back({"HT_HTGS", ""});
     for (auto& x : passes_.geometry_defines()) d.push_back(x);
-    if (splat_order_) build_global_sort(ctx, d, vp, tech == T::WindowSort);
+    if (splat_order_) build_global_sort(ctx, p.get("technique"), d, vp, tech == T::WindowSort);
     if (arrays_) {
       std::string storage = p.get("storage");
       layout_ = StorageLayout::parse(storage == "interleaved" ? "interleaved-4x4-a4" : storage);
@@ -168,7 +169,8 @@ class ApproxCase final : public OitCase {
           {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/wboit_resolve.frag"}}, d);
       bytes_per_pixel_ = 16.0 + 4.0;
     } else {
-      blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "approx/unsorted.frag"}}, d);
+      const char* blend = early_stop_ ? "approx/global_stop.frag" : "approx/unsorted.frag";
+      blend_ = ctx.build({{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, blend}}, d);
       set_view_proj(blend_, vp);
     }
   }
@@ -177,14 +179,45 @@ class ApproxCase final : public OitCase {
   // (shaders/splats/keys.comp) and the primitive radix sort orders them back to front; the blend pass then
   // draws the splats in that order (SPLAT_ORDERED) with "over" blending, as `unsorted` draws them in theirs.
   // WINDOW-SORT (`near_first`) sorts them front to back and inserts them in that order into its windows.
-  void build_global_sort(CaseContext& ctx, Defines& d, const glm::mat4& vp, bool near_first) {
+  // With early_stop, near to far too, composited front to back and stopped early (approx/global_stop.frag).
+  // A scene without splats never gets here: the technique table says it draws only splats (make_oit_case).
+  void build_global_sort(CaseContext& ctx, const std::string& technique, Defines& d, const glm::mat4& vp,
+                         bool near_first) {
+    const GpuSplats* splats = passes_.splats();
+    if (!splats) throw std::logic_error(technique + ": scene '" + scene_.name + "' has no splats");
     d.push_back({"SPLAT_ORDERED", ""});
-    sort_ = std::make_unique<RadixSort>(ctx, passes_.splats()->size(), 32);
-    Defines keys;
-    if (near_first) keys.push_back({"SPLAT_KEYS_NEAR_FIRST", ""});
-    keys_ = ctx.build({{GL_COMPUTE_SHADER, "splats/keys.comp"}}, keys);
+    sort_ = std::make_unique<RadixSort>(ctx, splats->size(), 32);
+    early_stop_ = settings_.early_stop > 0;
+    if (early_stop_) {
+      if (ctx.gl().has_extension("GL_ARB_fragment_shader_interlock"))
+        d.push_back({"GLOBAL_STOP_INTERLOCK", ""});
+      else if (!ctx.gl().is_software_renderer())
+        throw Unsupported(technique +
+                          " with early_stop reads and writes each pixel's transmittance in submission order: it needs "
+                          "GL_ARB_fragment_shader_interlock on a hardware driver");
+      for (auto& x : early_stop_defines(settings_.early_stop, ctx.fault())) d.push_back(x);
+      reveal_ = gl::make_texture(GL_TEXTURE_2D);  // each pixel's transmittance
+      glTextureStorage2D(reveal_.get(), 1, GL_R32F, width_, height_);
+      resolve_ = ctx.build(
+          {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "approx/global_stop_resolve.frag"}}, d);
+    }
+    keys_ = ctx.build({{GL_COMPUTE_SHADER, "splats/keys.comp"}},
+                      near_first || early_stop_ ? Defines{{"SPLAT_KEYS_NEAR_FIRST", ""}} : Defines{});
     set_view_proj(keys_, vp);
     bytes_per_pixel_ = static_cast<double>(sort_->bytes()) / (static_cast<double>(width_) * height_);
+    if (early_stop_) bytes_per_pixel_ += 16.0 + 4.0;  // the accumulated colour and the transmittance
+  }
+  // GLOBAL-SORT's early_stop, and its memory: the sort's buffers beside the scene's splats (with early_stop,
+  // the accumulated colour and the transmittance per pixel too), refused before the reference capture.
+  void plan_global_sort(const CaseContext& ctx, const ParamSet& p) {
+    settings_.early_stop = static_cast<float>(early_stop_of(p));
+    const std::string technique = p.get("technique");
+    const size_t splats = passes_.mesh().splats.size();
+    const unsigned long long pixels = static_cast<unsigned long long>(width_) * height_;
+    MemoryNeed need;
+    need.gpu_bytes = RadixSort::bytes_for(splats) + (settings_.early_stop > 0 ? pixels * 20 : 0);
+    need.gpu_what = "the radix sort's keys and indices (" + format_count(splats) + " splats x 28 B)";
+    require_memory(combined(need, scene_held_memory(passes_.mesh())), ctx.memory(), technique + "'s sort:");
   }
   // The technique's own storage: the nodes' 8 bytes, the lock, and the AT family's and HT's accumulation targets.
   void require_array_memory(const ParamSet& p, const CaseContext& ctx) const {
@@ -339,13 +372,18 @@ class ApproxCase final : public OitCase {
       resolve(timer, true);
     } else {
       sort_pass(timer);
-      auto t = timer.pass("blend");
-      out_.bind();
-      passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
-      glEnable(GL_BLEND);
-      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-      draw_transparent(blend_);
-      glDisable(GL_BLEND);
+      if (early_stop_) {
+        blend_front_to_back(timer);
+        resolve(timer, true);
+      } else {
+        auto t = timer.pass("blend");
+        out_.bind();
+        passes_.fill_with_backdrop(out_.framebuffer(), out_.color_texture());
+        glEnable(GL_BLEND);
+        glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+        draw_transparent(blend_);
+        glDisable(GL_BLEND);
+      }
     }
     // Outside the timed passes: the frames the flicker metric compares.
     if (flicker_runs_ > 0) {
@@ -354,6 +392,23 @@ class ApproxCase final : public OitCase {
     }
   }
 
+  // GLOBAL-SORT's early stop: the sorted splats front to back, T alpha c added up in accum_, each pixel's
+  // transmittance (from 1) in reveal_.
+  void blend_front_to_back(PassTimer& timer) {
+    auto t = timer.pass("blend");
+    accum_.bind();
+    const GLenum first = GL_COLOR_ATTACHMENT0;
+    glNamedFramebufferDrawBuffers(accum_.framebuffer(), 1, &first);
+    const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+    glClearNamedFramebufferfv(accum_.framebuffer(), GL_COLOR, 0, zero);
+    glClearTexImage(reveal_.get(), 0, GL_RED, GL_FLOAT, &one);
+    glBindImageTexture(APPROX_TRANSMITTANCE_IMAGE_UNIT, reveal_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    draw_transparent(blend_);
+    glDisable(GL_BLEND);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
   // The transparent geometry through `program`, between the effects' geometry set-up and tear-down.
   void draw_transparent(const gl::Program& program) {
     glUseProgram(program.get());
@@ -433,8 +488,9 @@ class ApproxCase final : public OitCase {
     // Splat scenes: the error against the analytic reference, reported (an approximation is not held to it).
     // Every pass here shades RGBA8 fragments (scene_fragment_rgba8), so the reference rounds its fragments the
     // same way, as it does for an exact case's RGBA8 capture: the error left is the approximation's own.
-    report_splat_check(check_against_splats(passes_, rgb, 3, width_, height_, kModelTolerance, true), kModelTolerance,
-                       m, nullptr);
+    report_splat_check(
+        check_against_splats(passes_, rgb, 3, width_, height_, kModelTolerance, true, settings_.early_stop),
+        kModelTolerance, m, nullptr);
     m["model_max_diff"] = fmt(model_max);
     unsigned capped = 0;
     if (arrays_) {
@@ -492,6 +548,7 @@ class ApproxCase final : public OitCase {
   ApproxSettings settings_;
   bool arrays_ = false, at_family_ = false, ht_ = false;
   bool splat_order_ = false;  // GLOBAL-SORT, WINDOW-SORT: the splats drawn in their centres' order
+  bool early_stop_ = false;  // GLOBAL-SORT with early_stop: front to back, stopped early
   double bytes_per_pixel_ = 0;
   StorageLayout layout_;
   std::unique_ptr<StorageResources> storage_;

@@ -384,6 +384,28 @@ glm::vec3 at_pixel(const std::vector<ArrivedFragment>& frags, const std::vector<
   return glm::vec3(acc) + total * bg;
 }
 
+// GLOBAL-SORT: far to near with "over"; with early_stop near to far (ties in arrival order both ways, as the
+// stable radix sort keeps them), front to back, stopping at the fragment that would take T below it.
+glm::vec3 global_sort_pixel(std::vector<ArrivedFragment>& frags, float early_stop, glm::vec3 bg) {
+  if (early_stop <= 0) {
+    std::stable_sort(frags.begin(), frags.end(),
+                     [](const ArrivedFragment& a, const ArrivedFragment& b) { return a.depth > b.depth; });
+    for (const auto& f : frags) bg = glm::vec3(f.colour) * f.colour.a + bg * (1.0f - f.colour.a);
+    return bg;
+  }
+  std::stable_sort(frags.begin(), frags.end(),
+                   [](const ArrivedFragment& a, const ArrivedFragment& b) { return a.depth < b.depth; });
+  glm::vec3 c(0.0f);
+  float t = 1.0f;
+  for (const auto& f : frags) {
+    const float next = t * (1.0f - f.colour.a);
+    if (next < early_stop) break;
+    c += t * f.colour.a * glm::vec3(f.colour);
+    t = next;
+  }
+  return c + t * bg;
+}
+
 }  // namespace
 
 unsigned pack_rgba8(glm::vec4 v) {
@@ -409,10 +431,8 @@ ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const App
       c = ht_pixel(frags, s, n, bg, tech == T::Ht, st.htgs);
     } else if (tech == T::Unsorted) {
       for (const auto& f : frags) c = glm::vec3(f.colour) * f.colour.a + c * (1.0f - f.colour.a);
-    } else if (tech == T::GlobalSort) {  // fragments keyed by their splat's centre: its order, far to near
-      std::stable_sort(frags.begin(), frags.end(),
-                       [](const ArrivedFragment& a, const ArrivedFragment& b) { return a.depth > b.depth; });
-      for (const auto& f : frags) c = glm::vec3(f.colour) * f.colour.a + c * (1.0f - f.colour.a);
+    } else if (tech == T::GlobalSort) {  // fragments keyed by their splat's centre: its order
+      c = global_sort_pixel(frags, st.early_stop, bg);
     } else if (tech == T::Wboit) {
       c = wboit_pixel(frags, st, bg);
     } else {

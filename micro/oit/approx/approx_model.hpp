@@ -20,6 +20,7 @@ struct ApproxSettings {
   bool unguarded = false;          // the deliberately unguarded variant (hard-case tests)
   bool htgs = false;               // HT: HTGS's configuration (ht_variant=htgs)
   glm::vec2 near_far{0.1f, 10.f};  // the projection's planes (WBOIT eq7 works on view distance)
+  float early_stop = 0;            // GLOBAL-SORT: 3DGS's early termination threshold (0: off)
 };
 
 struct ApproxModel {

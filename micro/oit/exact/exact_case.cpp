@@ -70,6 +70,7 @@ class ExactCase final : public OitCase {
         block_(static_cast<int>(p.get_int("block"))),
         block_sort_(parse_block_sort(p.has("block_sort") ? p.get("block_sort") : "insertion")),
         order_check_(p.has("order_check") && p.get("order_check") == "on"),
+        early_stop_(technique_.reads("early_stop") ? early_stop_of(p) : 0.0),
         format_(parse_frag_format(p.get("frag_colour"), p.get("frag_depth"))),
         tolerance_(tolerance_of(format_.colour)),
         passes_(p, ctx),
@@ -165,7 +166,9 @@ class ExactCase final : public OitCase {
         native_backdrop_ = passes_.read_backdrop();
       }
       auto t = timer.cpu_pass("resolve");  // C++ threads: no GL work for a query to time
-      resolve_native(host_, native_backdrop_, 0, wrong_result_, native_out_);
+      const bool stops = ctx_.fault() != "no-early-stop";
+      resolve_native(host_, native_backdrop_, 0, wrong_result_, native_out_,
+                     stops ? static_cast<float>(early_stop_) : 0);
       return;
     }
     if (compute_) {
@@ -267,7 +270,7 @@ class ExactCase final : public OitCase {
     std::vector<double> ref;
     {
       const auto referencing = ctx_.phase(Phase::Reference);
-      ref = composite_reference(ref_host, backdrop);
+      ref = composite_reference(ref_host, backdrop, early_stop_);
     }
     auto err = compare_with_reference(rgba, ref, stats, backdrop, width_, tolerance_);
     m["max_abs_error"] = fmt(err.max_abs_error);
@@ -377,8 +380,8 @@ class ExactCase final : public OitCase {
   void check_against_splat_list(const std::vector<float>& rgba, std::map<std::string, std::string>& m,
                                 std::vector<std::string>& problems) {
     auto referencing = ctx_.phase(Phase::Reference);
-    auto check =
-        check_against_splats(passes_, rgba, 4, width_, height_, tolerance_, format_.colour == FragColour::RGBA8);
+    auto check = check_against_splats(passes_, rgba, 4, width_, height_, tolerance_,
+                                      format_.colour == FragColour::RGBA8, early_stop_);
     referencing.end();
     report_splat_check(check, tolerance_, m, &problems);
   }
@@ -498,8 +501,8 @@ class ExactCase final : public OitCase {
   // Everything the captured fragments depend on: the size, whether the pool keeps counts, and every
   // parameter but those only the resolve reads (a parameter added later is in the key until listed here).
   std::string pool_key(const ParamSet& p, const CaseContext& ctx) const {
-    constexpr std::array<std::string_view, 7> kResolveOnly = {"technique", "block",       "block_sort",    "cs_group",
-                                                              "max_frags", "order_check", "bma_auto_cache"};
+    constexpr std::array<std::string_view, 8> kResolveOnly = {
+        "technique", "block", "block_sort", "cs_group", "max_frags", "order_check", "bma_auto_cache", "early_stop"};
     std::string key = std::to_string(ctx.width()) + "x" + std::to_string(ctx.height()) + (bma_ ? " counts" : "");
     for (const auto& [k, v] : p.values())
       if (std::find(kResolveOnly.begin(), kResolveOnly.end(), k) == kResolveOnly.end()) key += " " + k + "=" + v;
@@ -571,6 +574,7 @@ class ExactCase final : public OitCase {
   Defines resolve_defines(const SortChoice& sort, unsigned max_frags) const {
     bool packed = format_.colour == FragColour::RGBA8 && ctx_.gl().has_extension("GL_ARB_gpu_shader_int64");
     Defines d = sort_defines(sort, max_frags, static_cast<unsigned>(block_), packed);
+    for (auto& x : early_stop_defines(early_stop_, ctx_.fault())) d.push_back(x);
     for (auto& x : lists_->defines()) d.push_back(x);
     for (auto& x : passes_.defines()) d.push_back(x);
     return d;
@@ -677,6 +681,7 @@ class ExactCase final : public OitCase {
   int block_;
   BlockSort block_sort_;
   bool order_check_;
+  double early_stop_;  // 3DGS's early termination threshold (0: off); the resolve's EARLY_STOP
   FragFormat format_;
   double tolerance_;
   ScenePasses passes_;

@@ -157,7 +157,7 @@ size_t hidden_fragments(const HostLists& l, const Backdrop& b) {
   return hidden;
 }
 
-std::vector<double> composite_reference(const HostLists& l, const Backdrop& backdrop) {
+std::vector<double> composite_reference(const HostLists& l, const Backdrop& backdrop, double min_transmittance) {
   size_t pixels = l.heads.size();
   std::vector<double> out(pixels * 3);
   const unsigned threads = reference_threads(l);
@@ -173,8 +173,10 @@ std::vector<double> composite_reference(const HostLists& l, const Backdrop& back
     double transmittance = 1.0;
     for (const auto& fr : f) {
       const glm::dvec4& k = fr.rgba;
+      const double next = transmittance * (1.0 - k.a);
+      if (next < min_transmittance) break;  // early termination (never with 0)
       c += transmittance * k.a * glm::dvec3(k);
-      transmittance *= 1.0 - k.a;
+      transmittance = next;
     }
     c += transmittance * glm::dvec3(backdrop.at(p));
     for (int k = 0; k < 3; ++k) out[p * 3 + k] = c[k];
@@ -182,7 +184,27 @@ std::vector<double> composite_reference(const HostLists& l, const Backdrop& back
   return out;
 }
 
-void resolve_native(const HostLists& l, const Backdrop& backdrop, int threads, bool perturb, std::vector<float>& out) {
+namespace {
+
+// Far-to-near fragments composited front to back (the last first) in float over `backdrop`, stopping at
+// the fragment that would take the transmittance below `min_transmittance` (the shaders' EARLY_STOP).
+glm::vec3 composite_front_to_back(const std::vector<Frag>& f, glm::vec3 backdrop, float min_transmittance) {
+  glm::vec3 c(0.0f);
+  float t = 1.0f;
+  for (auto it = f.rbegin(); it != f.rend(); ++it) {
+    const glm::vec4 k(it->rgba);
+    const float next = t * (1.0f - k.a);
+    if (next < min_transmittance) break;
+    c += t * k.a * glm::vec3(k);
+    t = next;
+  }
+  return c + t * backdrop;
+}
+
+}  // namespace
+
+void resolve_native(const HostLists& l, const Backdrop& backdrop, int threads, bool perturb, std::vector<float>& out,
+                    float min_transmittance) {
   size_t pixels = l.heads.size();
   out.assign(pixels * 4, 0.0f);
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -196,12 +218,15 @@ void resolve_native(const HostLists& l, const Backdrop& backdrop, int threads, b
           return a.depth != b.depth ? a.depth > b.depth : a.colour > b.colour;  // the reference's tie-break
         });
         glm::vec3 c = backdrop.at(p);
-        for (const auto& fr : f) {
-          glm::vec4 k(fr.rgba);
-          // "over" with one rounding per channel (fma), as GPUs blend: 5000 layers of alpha 1e-4 in
-          // rgba32f stay within 1e-6 of the truth, where a separately rounded mix drifts by 6e-5.
-          for (int ch = 0; ch < 3; ++ch) c[ch] = std::fma(k.a, k[ch] - c[ch], c[ch]);
-        }
+        if (min_transmittance > 0)
+          c = composite_front_to_back(f, c, min_transmittance);
+        else
+          for (const auto& fr : f) {
+            glm::vec4 k(fr.rgba);
+            // "over" with one rounding per channel (fma), as GPUs blend: 5000 layers of alpha 1e-4 in
+            // rgba32f stay within 1e-6 of the truth, where a separately rounded mix drifts by 6e-5.
+            for (int ch = 0; ch < 3; ++ch) c[ch] = std::fma(k.a, k[ch] - c[ch], c[ch]);
+          }
         if (perturb && p % l.width == row) c.r += 1.0f / 64.0f;  // the diagonal, like the shaders
         out[p * 4 + 0] = c.r;
         out[p * 4 + 1] = c.g;

@@ -51,15 +51,18 @@ struct ListDepths {
 };
 ListDepths list_depths(const HostLists& lists);
 
-// One RGB per pixel (3 doubles), the backdrop where no fragment landed.
-std::vector<double> composite_reference(const HostLists& lists, const Backdrop& backdrop);
+// One RGB per pixel (3 doubles), the backdrop where no fragment landed. `min_transmittance` > 0: 3DGS's early
+// termination (the early_stop parameter): the fragment that would take the transmittance below it is not
+// blended, nor any after it (the backdrop shows through the transmittance before it).
+std::vector<double> composite_reference(const HostLists& lists, const Backdrop& backdrop, double min_transmittance = 0);
 
 // The GPU resolves' output convention: rgb composited onto the background, alpha = how many times
 // the pixel was resolved (additive blending), so uncovered pixels stay (0,0,0,0).
 // CPU-NATIVE: the same resolve on `threads` native threads (0: all cores); sorts far-to-near and
 // blends back to front in float, like the shaders. `perturb` changes the diagonal x == y (fault=wrong-result).
+// With `min_transmittance` > 0 it composites front to back in float and stops early, as the shaders then do.
 void resolve_native(const HostLists& lists, const Backdrop& backdrop, int threads, bool perturb,
-                    std::vector<float>& out);
+                    std::vector<float>& out, float min_transmittance = 0);
 
 // A captured fragment as the CPU models of the approximate, moment and stochastic techniques read it:
 // its RGBA8 colour unpacked to floats and its depth as captured.

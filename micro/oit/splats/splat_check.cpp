@@ -9,13 +9,15 @@
 namespace oitbench::oit {
 
 std::optional<SplatCheck> check_against_splats(const ScenePasses& fx, const std::vector<float>& image, int channels,
-                                               int width, int height, double tolerance, bool rgba8_fragments) {
+                                               int width, int height, double tolerance, bool rgba8_fragments,
+                                               double min_transmittance) {
   if (!fx.splats() || fx.effects() != std::vector<std::string>{"transparency"}) return std::nullopt;
   const Mesh& mesh = fx.mesh();
   SplatReferenceOptions options;
   options.order = fx.splat_depth() == "centre" ? SplatOrder::Centre : SplatOrder::RayMaximum;
   options.background = glm::dvec3(fx.scene().background);
-  options.quantise_rgba8 = rgba8_fragments;            // the fragments rounded as the capture stores them
+  options.quantise_rgba8 = rgba8_fragments;  // the fragments rounded as the capture stores them
+  options.min_transmittance = min_transmittance;
   const glm::vec2 planes = near_far(fx.view(), mesh);  // the GPU's clip-z test culls outside them
   const SplatCamera camera = splat_camera(fx.view(), width, height, planes.x, planes.y);
   const SplatImage ref = splat_reference(mesh.splats, camera, options);

@@ -27,8 +27,10 @@ struct SplatCheck {
 // where the scene has no splats or runs another effect than transparency (the reference knows no opaque pass). The
 // reference's order is the case's splat_depth key. `rgba8_fragments`: the case captured its fragments in RGBA8
 // (frag_colour=rgba8), so the reference rounds each splat fragment the same way (splat_reference.hpp).
+// `min_transmittance`: the case's early_stop threshold (3DGS's early termination; 0: off), the reference's too.
 std::optional<SplatCheck> check_against_splats(const ScenePasses& fx, const std::vector<float>& image, int channels,
-                                               int width, int height, double tolerance, bool rgba8_fragments = false);
+                                               int width, int height, double tolerance, bool rgba8_fragments = false,
+                                               double min_transmittance = 0);
 
 // The metrics of a check (nothing without one), and its problem where `problems` is given (the exact
 // techniques: they must match it).
