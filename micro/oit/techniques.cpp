@@ -80,19 +80,21 @@ Technique splats_only(Technique t) {
 std::vector<Technique> build_table() {
   using R = ResolveSort;
   using A = ApproxTechnique;
-  // The insertion resolves (IS, IMS) and the CPU's composite front to back and stop early where asked.
+  // The insertion and register-block resolves (IS, IMS, RBS-L) and the CPU's composite front to back and
+  // stop early where asked (RBS-G and BMA-AUTO do not).
   const Params kInsertionStop = kInsertion + kEarlyStop;
+  const Params kRegistersStop = kRegistersLocal + kEarlyStop;
   return {
       exact("BASE-IS", S::Base, "IS", R::IS, kInsertionStop, true),
       exact("BASE-IMS", S::Base, "IMS", R::IMS, kInsertionStop, false),
-      exact("BASE-RBS-L", S::Base, "RBS-L", R::RBS_L, kRegistersLocal, true),
+      exact("BASE-RBS-L", S::Base, "RBS-L", R::RBS_L, kRegistersStop, true),
       exact("BMA-IS", S::Bma, "IS", R::IS, kInsertionStop, true),
       exact("BMA-IMS", S::Bma, "IMS", R::IMS, kInsertionStop, false),
-      exact("BMA-RBS-L", S::Bma, "RBS-L", R::RBS_L, kRegistersLocal, true),
+      exact("BMA-RBS-L", S::Bma, "RBS-L", R::RBS_L, kRegistersStop, true),
       exact("CPU-NATIVE", S::Cpu, "NATIVE", std::nullopt, kCaptured + kEarlyStop, true),
       exact("CS-IS", S::Compute, "IS", R::IS, kInsertionStop + kCompute, false),
       exact("CS-IMS", S::Compute, "IMS", R::IMS, kInsertionStop + kCompute, false),
-      exact("CS-RBS-L", S::Compute, "RBS-L", R::RBS_L, kRegistersLocal + kCompute, false),
+      exact("CS-RBS-L", S::Compute, "RBS-L", R::RBS_L, kRegistersStop + kCompute, false),
       exact("RBS-G", S::Global, "RBS", R::RBS_G, kRegisters, false),
       exact("BMA-AUTO", S::Bma, "AUTO", std::nullopt, kShaderResolve + Params{"block", "bma_auto_cache"}, false),
       other("DP", F::Peel, static_cast<int>(PeelKind::Depth), kPeel, make_peel_case),

@@ -18,7 +18,7 @@
 //               (which sorts for itself) still applies.
 // Expects (resolve_pixel.glsl): sorts/api.glsl and SORT_T / SORT_GT bound, RBS_M (<= 32), MAX_K
 // (MAX_FRAGS = RBS_M * MAX_K), blend_over(vec3, FRAG_T), backdrop, the storage API (RBS-G: with
-// FRAG_STORE).
+// FRAG_STORE); with EARLY_STOP (RBS-L only) resolve_pixel.glsl's ftb_* front-to-back composite.
 #pragma optionNV(unroll all)
 
 // The binding of the library's API for the block sort: the block in registers, every index a constant.
@@ -91,6 +91,21 @@ vec3 resolve_pixel(uint node) {
   rbs_check_begin();
 #endif
   int m = load_block(node);
+#if defined(EARLY_STOP)  // front to back: near to far, stopped early
+  ftb_begin();
+#if defined(SORT_ORDER_CHECK)
+  if (rbsReversed && !rbsOrdered) {  // near-to-far as loaded
+#define RBS_ADD(i) if ((i) < m) ftb_add(registers[i]);
+    SORT_EACH_INDEX(RBS_ADD)
+    return ftb_end();
+  }
+  if (!rbsOrdered)
+#endif
+  RBS_SORT_BLOCK(m);
+#define RBS_ADD_BACK(i) if (RBS_M - 1 - (i) < m) ftb_add(registers[RBS_M - 1 - (i)]);
+  SORT_EACH_INDEX(RBS_ADD_BACK)
+  return ftb_end();
+#else
   vec3 c = backdrop;
 #if defined(SORT_ORDER_CHECK)
   if (rbsReversed && !rbsOrdered) {  // near-to-far: blended from its far end
@@ -104,9 +119,41 @@ vec3 resolve_pixel(uint node) {
 #define RBS_BLEND(i) if ((i) < m) c = blend_over(c, registers[i]);
   SORT_EACH_INDEX(RBS_BLEND)
   return c;
+#endif
 }
 #elif defined(SORT_RBS)
 FRAG_T frags[MAX_FRAGS];  // the sorted blocks (local memory)
+
+#if defined(EARLY_STOP)
+// The k-way merge front to back: each block (sorted far to near) is read from its near end, the nearest
+// of the candidates blended next ("under"), until the transmittance stops it.
+vec3 merge_front_to_back(int n, int k) {
+  FRAG_T candidate[MAX_K];
+  int blockIdx[MAX_K], blockBegin[MAX_K];
+  for (int j = 0; j < MAX_K; ++j) {
+    blockBegin[j] = j * RBS_M;
+    blockIdx[j] = (j < k ? min((j + 1) * RBS_M, n) : blockBegin[j]) - 1;
+    if (j < k) candidate[j] = frags[blockIdx[j]];
+  }
+  ftb_begin();
+  for (int f = 0; f < n && !ftbDone; ++f) {
+    int b = -1;
+    FRAG_T best = FRAG_ZERO;
+    for (int j = 0; j < MAX_K; ++j)
+      if (blockIdx[j] >= blockBegin[j] && (b < 0 || FRAG_FARTHER(best, candidate[j]))) {
+        b = j;
+        best = candidate[j];
+      }
+    for (int j = 0; j < MAX_K; ++j)
+      if (j == b) {
+        ftb_add(candidate[j]);
+        --blockIdx[j];
+        if (blockIdx[j] >= blockBegin[j]) candidate[j] = frags[blockIdx[j]];
+      }
+  }
+  return ftb_end();
+}
+#endif
 
 vec3 resolve_pixel(uint node) {
   int n = 0, k = 0;
@@ -127,7 +174,13 @@ vec3 resolve_pixel(uint node) {
     n += m;
     ++k;
   }
-#if defined(SORT_ORDER_CHECK)
+#if defined(SORT_ORDER_CHECK) && defined(EARLY_STOP)
+  if (rbsOrdered || rbsReversed) {  // far-to-near from its near end, near-to-far from its start
+    ftb_begin();
+    for (int i = 0; i < n && !ftbDone; ++i) ftb_add(frags[rbsOrdered ? n - 1 - i : i]);
+    return ftb_end();
+  }
+#elif defined(SORT_ORDER_CHECK)
   vec3 c0 = backdrop;
   if (rbsOrdered) {  // far-to-near as it is: no merge
     for (int i = 0; i < n; ++i) c0 = blend_over(c0, frags[i]);
@@ -137,6 +190,8 @@ vec3 resolve_pixel(uint node) {
     for (int i = n - 1; i >= 0; --i) c0 = blend_over(c0, frags[i]);
     return c0;
   }
+#endif
+#if defined(SORT_ORDER_CHECK)
   // Mixed after a near-to-far start: the blocks stored unsorted are reversed, which sorts them.
   for (int j = 0; j < unsortedBlocks; ++j)
     for (int i = j * RBS_M, e = min((j + 1) * RBS_M, n) - 1; i < e; ++i, --e) {
@@ -145,6 +200,9 @@ vec3 resolve_pixel(uint node) {
       frags[e] = t;
     }
 #endif
+#if defined(EARLY_STOP)
+  return merge_front_to_back(n, k);
+#else
   // k-way merge: the candidate (deepest remaining fragment) of each block stays in a register.
   FRAG_T candidate[MAX_K];
   int blockIdx[MAX_K], blockEnd[MAX_K];
@@ -170,6 +228,7 @@ vec3 resolve_pixel(uint node) {
       }
   }
   return c;
+#endif
 }
 #elif defined(SORT_RBS_G)
 #define RBS_WRITE_BACK(i) if ((i) < m) { FRAG_STORE(dst, registers[i]); dst = FRAG_NEXT(dst); }

@@ -15,7 +15,7 @@
 //   SORT_RBS_G: the same blocks sorted in place in the list's nodes, merged from global memory
 //               (rbs.glsl) (RBS-G)
 // micro/oit/resolve/resolve_sort.cpp names the same files for the `sort_source` column.
-//   EARLY_STOP (IS, IMS; the early_stop parameter, a float threshold): 3DGS's early termination (Kerbl
+//   EARLY_STOP (IS, IMS, RBS-L; the early_stop parameter, a float threshold): 3DGS's early termination (Kerbl
 //               et al. 2023): the sorted fragments composited front to back ("under"), stopping at the
 //               fragment that would take the transmittance below EARLY_STOP (not blended, nor any after it)
 // Expects: a storage include, `vec3 backdrop` (set per pixel from backdrop.glsl's backdrop_colour()).
@@ -24,6 +24,30 @@ vec3 blend_over(vec3 c, FRAG_T frag) {
   vec4 k = frag_colour(frag);
   return mix(c, k.rgb, k.a);
 }
+
+#if defined(EARLY_STOP)
+// Front to back ("under") with 3DGS's early termination, fed fragments near to far: a fragment that would
+// take the transmittance below EARLY_STOP is not blended, nor any after it (the resolves' EARLY_STOP forms).
+vec3 ftbColour;
+float ftbT;
+bool ftbDone;
+void ftb_begin() {
+  ftbColour = vec3(0.0);
+  ftbT = 1.0;
+  ftbDone = false;
+}
+void ftb_add(FRAG_T frag) {
+  vec4 k = frag_colour(frag);
+  float next = ftbT * (1.0 - k.a);
+  if (ftbDone || next < EARLY_STOP) {
+    ftbDone = true;
+    return;
+  }
+  ftbColour += ftbT * k.a * k.rgb;
+  ftbT = next;
+}
+vec3 ftb_end() { return ftbColour + ftbT * backdrop; }
+#endif
 
 // The binding of the sort library's element API (shaders/sorts/api.glsl): fragments far to near.
 // An element belongs after another when the other is farther; equal depths are ordered by colour
@@ -60,16 +84,9 @@ int frag_count;  // the pixel's fragments: a run-time loop bound, so the sorts w
 #if defined(EARLY_STOP)
 // frags[0, n) far to near, composited from the near end; the backdrop shows through what is left.
 vec3 composite_front_to_back(int n) {
-  vec3 c = vec3(0.0);
-  float t = 1.0;
-  for (int i = n - 1; i >= 0; --i) {
-    vec4 k = frag_colour(frags[i]);
-    float next = t * (1.0 - k.a);
-    if (next < EARLY_STOP) break;
-    c += t * k.a * k.rgb;
-    t = next;
-  }
-  return c + t * backdrop;
+  ftb_begin();
+  for (int i = n - 1; i >= 0 && !ftbDone; --i) ftb_add(frags[i]);
+  return ftb_end();
 }
 #endif
 vec3 resolve_pixel(uint node) {

@@ -123,9 +123,12 @@ TEST_F(Splats, GlobalSortOfAMeshIsUnsupported) {
 // exact ones the analytic splat reference, GLOBAL-SORT its CPU model). At 0.3 the test scene's dense pixels
 // stop; the same case blending every fragment (fault=no-early-stop) is another image, and its checks fail.
 TEST_F(Splats, EarlyStopMatchesReferencesThatStopAndTheirChecksFailWithoutIt) {
-  for (const char* t : {"BASE-IS", "BMA-IMS", "CS-IS", "CPU-NATIVE", "GLOBAL-SORT"}) {
+  // RBS-L: its merge (BASE), the one-block form of BMA's short intervals, and the order check's paths (CS)
+  for (const char* t :
+       {"BASE-IS", "BMA-IMS", "CS-IS", "CPU-NATIVE", "GLOBAL-SORT", "BASE-RBS-L", "BMA-RBS-L", "CS-RBS-L"}) {
     auto p = splat_case(t);
     p["early_stop"] = "0.3";
+    if (std::string(t) == "CS-RBS-L" || std::string(t) == "BMA-RBS-L") p["order_check"] = "on";
     auto v = run_case("oit", p, {48, 48});
     EXPECT_TRUE(v.valid) << t << ": " << v.reason;
     if (std::string(t) != "GLOBAL-SORT") EXPECT_EQ(v.metrics.at("geometric_bad_pixels"), "0") << t;
