@@ -77,8 +77,9 @@ std::vector<ParamSpec> Registry::framework_params() {
       "must fail), no-early-stop (oit's ordered techniques blend every fragment although early_stop asks them to "
       "stop, so their checks against references that stop must fail)";
   fault.defaults = {"none"};
-  fault.allowed = {"none",          "wrong-result",     "compile-error", "hang",         "lose-fragment",
-                   "no-opaque-depth", "shadow-slice-off", "path-pop",      "no-early-stop"};
+  fault.allowed = {"none",          "wrong-result",    "compile-error",    "hang",
+                   "lose-fragment", "no-opaque-depth", "shadow-slice-off", "path-pop",
+                   "no-early-stop"};
   ParamSpec seed;
   seed.name = "seed";
   seed.description = "seed of the case's random inputs";

@@ -26,7 +26,8 @@ std::string data(const std::string& name) { return std::string(OITBENCH_TEST_DAT
 const std::vector<std::string> kExact = {"BASE-IS", "BASE-IMS", "BASE-RBS-L", "BMA-IS", "CPU-NATIVE"};
 
 // The approximate techniques that draw meshes: the technique table's primitives leave out those that
-// draw only splats (GLOBAL-SORT, 3DGS's global sort, and WINDOW-SORT, StopThePop's windowed sort: unsupported on a scene without them, gpu.Splats).
+// draw only splats (GLOBAL-SORT, 3DGS's global sort, and WINDOW-SORT, StopThePop's windowed sort: unsupported on a
+// scene without them, gpu.Splats).
 std::vector<std::string> approximate_on_meshes() {
   return oit::technique_names_on_meshes(oit::TechniqueFamily::Approximate);
 }

@@ -104,7 +104,7 @@ class ApproxCase final : public OitCase {
     bool interlock = p.get("sync") == "interlock";
     if (arrays_ && interlock && !ctx.gl().has_extension("GL_ARB_fragment_shader_interlock"))
       throw Unsupported("sync=interlock needs GL_ARB_fragment_shader_interlock");
-    if (arrays_) require_array_memory(p, ctx);  // refused before the reference capture or anything else
+    if (arrays_) require_array_memory(p, ctx);            // refused before the reference capture or anything else
     if (tech == T::GlobalSort) plan_global_sort(ctx, p);  // its sort and early_stop's targets
 
     const View& view = passes_.view();
@@ -548,7 +548,7 @@ class ApproxCase final : public OitCase {
   ApproxSettings settings_;
   bool arrays_ = false, at_family_ = false, ht_ = false;
   bool splat_order_ = false;  // GLOBAL-SORT, WINDOW-SORT: the splats drawn in their centres' order
-  bool early_stop_ = false;  // GLOBAL-SORT with early_stop: front to back, stopped early
+  bool early_stop_ = false;   // GLOBAL-SORT with early_stop: front to back, stopped early
   double bytes_per_pixel_ = 0;
   StorageLayout layout_;
   std::unique_ptr<StorageResources> storage_;
