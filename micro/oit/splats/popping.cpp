@@ -116,6 +116,7 @@ struct PathSetup {
   int width = 0, height = 0;
   SharedCache* shared = nullptr;
   bool quantise = false;         // the case's fragments are RGBA8: the reference rounds them the same way
+  double early_stop = 0;         // the case's early_stop: the reference stops where it does (3DGS's rule)
   bool must_not_pop = false;     // an exact per-pixel technique sorting by the ray maximum
   bool fault_pop = false;        // fault=path-pop
   bool empty_is_alpha0 = false;  // the exact resolves leave an uncovered pixel at alpha 0 (the others composite)
@@ -220,6 +221,7 @@ class PoppingCase final : public OitCase {
       options.order = SplatOrder::RayMaximum;  // the exact image, whatever the case's own key
       options.background = glm::dvec3(s_.scene.background);
       options.quantise_rgba8 = s_.quantise;
+      options.min_transmittance = s_.early_stop;
       const glm::vec2 planes = near_far(v, *s_.mesh);  // the GPU's clip-z test culls outside them
       const SplatImage img =
           splat_reference(s_.mesh->splats, splat_camera(v, s_.width, s_.height, planes.x, planes.y), options);
@@ -234,8 +236,9 @@ class PoppingCase final : public OitCase {
     if (!s_.shared) return make();
     const auto& e = v.eye;
     const std::string key = s_.scene.path + "\n" + s_.view.name + "\n" + s_.detail + "\n" + std::to_string(s_.width) +
-                            "x" + std::to_string(s_.height) + (s_.quantise ? " rgba8" : "") + "\neye " +
-                            fmt_exact(e.x) + " " + fmt_exact(e.y) + " " + fmt_exact(e.z);
+                            "x" + std::to_string(s_.height) + (s_.quantise ? " rgba8" : "") + "\nstop " +
+                            fmt_exact(static_cast<float>(s_.early_stop)) + "\neye " + fmt_exact(e.x) + " " +
+                            fmt_exact(e.y) + " " + fmt_exact(e.z);
     // as many frames as 512 MiB hold (at least a pair), so that the cases of an interleaved group share them
     const size_t frame_bytes = static_cast<size_t>(s_.width) * s_.height * (3 * sizeof(float) + sizeof(std::uint32_t));
     const size_t keep = std::clamp<size_t>((size_t(512) << 20) / std::max<size_t>(1, frame_bytes), 2, 130);
@@ -273,6 +276,7 @@ std::unique_ptr<OitCase> with_popping(std::unique_ptr<OitCase> inner, const Para
   s.shared = ctx.shared();
   const Technique& t = technique(p.get("technique"));
   s.quantise = t.reads("frag_colour") && p.get("frag_colour") == "rgba8";
+  s.early_stop = t.reads("early_stop") ? early_stop_of(p) : 0.0;
   s.must_not_pop = t.family == TechniqueFamily::Exact && p.get("splat_depth") == "ray-max";
   s.fault_pop = ctx.fault() == "path-pop";
   s.empty_is_alpha0 = t.family == TechniqueFamily::Exact;
