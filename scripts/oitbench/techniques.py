@@ -64,6 +64,11 @@ def params(name):
     return next((t["params"] for t in TABLE if t["name"] == name), [])
 
 
+def primitives(name):
+    """What technique `name` draws: "any" scene, or "splats" only (the table's primitives); "" for an unknown name."""
+    return next((t.get("primitives", "") for t in TABLE if t["name"] == name), "")
+
+
 def reads(name, param):
     """Whether technique `name` reads parameter `param` (the table's params); False for an unknown name."""
     return any(param in t["params"] for t in TABLE if t["name"] == name)

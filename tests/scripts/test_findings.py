@@ -63,6 +63,16 @@ class FindingsTest(TempDirTest):
         shutil.copytree(os.path.join(RESULTS, "presets"), os.path.join(dest, "presets"))
         return dest
 
+    def test_the_blends_are_the_mesh_blends_and_the_baseline_is_not_a_tie(self):
+        """The no-OIT baseline is the blend reading the fewest parameters: a tie would make it the table's order's
+        choice (GLOBAL-SORT, a splat order, once read as 'unsorted blending' this way), and a splat-only order
+        is no blend of a mesh scene."""
+        from oitbench import techniques
+        fewest = min(len(techniques.params(b)) for b in findings.BLENDS)
+        self.assertEqual([b for b in findings.BLENDS if len(techniques.params(b)) == fewest], [findings.UNSORTED])
+        self.assertTrue(all(techniques.primitives(b) == "any" for b in findings.BLENDS), findings.BLENDS)
+        self.assertIn(findings.WEIGHTED_BLEND, findings.BLENDS)
+
     def test_the_committed_findings_are_what_the_committed_csvs_give(self):
         got = generate(os.path.relpath(RESULTS, REPO), cwd=REPO)
         # From another working directory the same file comes out: paths are found from the script.

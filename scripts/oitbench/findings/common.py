@@ -23,8 +23,10 @@ PAPER_SCENE = knowles.PAPER_SCENE  # our stand-ins for the papers' models
 EXACT_SHADER = [t for t in techniques.exact_in_paper_order() if t != techniques.CPU_RESOLVE]
 # The approximate techniques that keep a per-pixel array of nodes, in the table's order.
 PER_PIXEL_ARRAY = tuple(techniques.reading("nodes", "approximate"))
-# The approximate techniques that blend every fragment instead of keeping nodes per pixel (WBOIT, unsorted).
-BLENDS = tuple(t for t in techniques.names("approximate") if not techniques.reads(t, "nodes"))
+# The approximate techniques that blend every fragment of any scene instead of keeping nodes per pixel (WBOIT,
+# unsorted); the splat orders (GLOBAL-SORT, WINDOW-SORT: the table's primitives "splats") are not blends of meshes.
+BLENDS = tuple(t for t in techniques.names("approximate")
+               if not techniques.reads(t, "nodes") and techniques.primitives(t) != "splats")
 # Among them the weighted blend (it reads a depth weight) and the no-OIT baseline (it reads the fewest parameters).
 WEIGHTED_BLEND = next(b for b in BLENDS if techniques.reads(b, "wboit_weight"))
 # The baseline's insertion-merge twin: the exact resolve the approximate ones are timed against.
