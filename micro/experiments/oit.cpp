@@ -233,18 +233,6 @@ class OitExperiment final : public Experiment {
         {"flicker", T::Number, "", "per-pixel variance across flicker_runs frames, mean over pixels"},
         {"flicker_max", T::Number, "", "its largest pixel"},
         {"flicker_pixels", T::Integer, "", "pixels whose value changed between frames"},
-        // splat scenes: popping over a camera path (micro/oit/splats/popping.hpp), empty elsewhere
-        {"popping", T::Number, "",
-         "splat scenes: the image's change between neighbouring frames of the popping path beyond the analytic "
-         "reference's, max(0, |f(k+1) - f(k)| - |r(k+1) - r(k)|) of the largest channel, mean over pixels and pairs "
-         "(stochastic techniques: their per-frame noise included)"},
-        {"popping_max", T::Number, "", "splat scenes: the largest pixel's popping"},
-        {"popping_pixels", T::Integer, "",
-         "splat scenes: pixels whose popping passes 2/255 in some pair of frames (exact per-pixel techniques with "
-         "splat_depth=ray-max: any is invalid)"},
-        {"popping_ms", T::Number, "ms",
-         "splat scenes: wall time of the popping path (its frames, read-backs and analytic references; after "
-         "validation, outside the timed passes)"},
         // self-shadowing (micro/oit/scene/shadow_map.cpp), only where the scene declares it
         {"shadow_rmse", T::Number, "",
          "self-shadowing: rmse of the opacity map's transmittance against the deep shadow map's (exact) at every "
@@ -280,6 +268,7 @@ class OitExperiment final : public Experiment {
     for (auto& x : own) m.push_back(std::move(x));
     m.push_back(sort_source_metric());
     for (auto& x : image_error_metrics()) m.push_back(std::move(x));
+    for (auto& x : popping_metrics()) m.push_back(std::move(x));
     return m;
   }
   // An effect the case's scene does not declare is a usage error before anything runs (exit 2);

@@ -69,4 +69,19 @@ std::vector<ParamSpec> popping_params();
 // effect beside transparency, popping_steps=0).
 std::unique_ptr<OitCase> with_popping(std::unique_ptr<OitCase> inner, const ParamSet& p, CaseContext& ctx);
 
+// The oit experiment's popping columns (splat scenes; empty elsewhere).
+inline std::vector<MetricSpec> popping_metrics() {
+  return {{"popping", ValueType::Number, "",
+           "splat scenes: the image's change between neighbouring frames of the popping path beyond the analytic "
+           "reference's, max(0, |f(k+1) - f(k)| - |r(k+1) - r(k)|) of the largest channel, mean over pixels and pairs "
+           "(stochastic techniques: their per-frame noise included)"},
+          {"popping_max", ValueType::Number, "", "splat scenes: the largest pixel's popping"},
+          {"popping_pixels", ValueType::Integer, "",
+           "splat scenes: pixels whose popping passes 2/255 in some pair of frames (exact per-pixel techniques with "
+           "splat_depth=ray-max: any is invalid)"},
+          {"popping_ms", ValueType::Number, "ms",
+           "splat scenes: wall time of the popping path (its frames, read-backs and analytic references; after "
+           "validation, outside the timed passes)"}};
+}
+
 }  // namespace oitbench::oit
