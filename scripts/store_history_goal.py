@@ -2,7 +2,7 @@
 """Issue 31's history goal on real runs: `store.py history` finds a +9.4% step (70 draws instead of 64 from
 run 11 of 20 runs of `occupancy --quick`) and no step in 20 identical runs.
 
-    scripts/store_history_goal.py collect POOL_DIR [--runs 60] [--every 3] [--exe build/oitbench]
+    scripts/store_history_goal.py collect POOL_DIR [--runs 60] [--every 3] [--reps N] [--exe build/oitbench]
     scripts/store_history_goal.py trials POOL_DIR [--trials 10] [--seed 1] [--alpha 0.01] [--statistic median|mean]
 
 collect: RUNS real runs of `oitbench run occupancy --quick --set draws=D` into POOL_DIR/NNN-dD.csv (and
@@ -49,7 +49,7 @@ def collect(args):
         draws = STEP if i % args.every == args.every - 1 else BASE
         out = os.path.join(args.pool, f"{i:03d}-d{draws}")
         cmd = [args.exe, "run", "occupancy", "--quick", "--set", f"draws={draws}", "--tag", f"goal-draws={draws}",
-               "--out", out + ".csv", "--raw", out + "_raw.csv"]
+               "--out", out + ".csv", "--raw", out + "_raw.csv"] + (["--reps", str(args.reps)] if args.reps else [])
         proc = subprocess.run(cmd, capture_output=True, text=True)
         print(f"{i:03d} draws={draws} exit {proc.returncode}", flush=True)
         if proc.returncode != 0:
@@ -148,6 +148,8 @@ def main(argv=None):
     p.add_argument("--every", type=cli.number(int, low=2), default=3,
                    help="one run in EVERY has 70 draws (default 3)")
     p.add_argument("--exe", default=os.path.join(REPO, "build", "oitbench"), help="the oitbench binary")
+    p.add_argument("--reps", type=cli.number(int, low=2), default=None,
+                   help="timed repetitions a run (default: --quick's); more give steadier medians a run")
     p.set_defaults(func=collect)
     p = sub.add_parser("trials", help="the goal's trials over the pool")
     p.add_argument("pool", help="the pool's folder")

@@ -594,6 +594,10 @@ def oit_label(row):
         t += f"/{row['nodes']}"
     if techniques.reads(name, "wboit_weight") and row.get("wboit_weight"):
         t += f"/{row['wboit_weight']}"
+    if techniques.reads(name, "window") and row.get("window"):  # WINDOW-SORT/16: a window of 16 fragments
+        t += f"/{row['window']}"
+    if techniques.reads(name, "ht_variant") and row.get("ht_variant") not in (None, "", "maule"):  # HT/16/htgs
+        t += f"/{row['ht_variant']}"
     if name in OIT_PEEL and row.get("max_layers") not in (None, "", "0"):
         t += f"/{row['max_layers']}"
     if techniques.reads(name, "moments") and row.get("moments"):  # /6p: 6 power moments; /3t trigonometric; /16 bits
