@@ -262,4 +262,16 @@ std::vector<GLuint> ids(const std::vector<gl::Program>& programs) {
   return out;
 }
 
+int capture_complete(FragmentStorage& storage, std::vector<gl::Program>& programs,
+                     const std::function<std::vector<gl::Program>()>& build, const std::function<void()>& draw) {
+  Defines built = storage.defines();
+  int rerenders = storage.capture(ids(programs), draw);
+  while (storage.defines() != built) {  // chunks only grow, to kMaxChunks (then Unsupported): this ends
+    built = storage.defines();
+    programs = build();
+    rerenders += 1 + storage.capture(ids(programs), draw);
+  }
+  return rerenders;
+}
+
 }  // namespace oitbench::oit

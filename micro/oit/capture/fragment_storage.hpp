@@ -199,4 +199,10 @@ std::vector<gl::Program> build_capture_programs(const FragmentStorage& storage, 
                                                 const std::vector<ShaderStage>& stages, const Defines& extra = {});
 std::vector<GLuint> ids(const std::vector<gl::Program>& programs);
 
+// Captures a frame with `programs` and, where the pool grew into more texel-buffer chunks than they
+// were built for (the fragments past their chunks were not stored), rebuilds them with `build` (which
+// also sets their uniforms) and captures again, until the layout holds. Returns the re-renders.
+int capture_complete(FragmentStorage& storage, std::vector<gl::Program>& programs,
+                     const std::function<std::vector<gl::Program>()>& build, const std::function<void()>& draw);
+
 }  // namespace oitbench::oit

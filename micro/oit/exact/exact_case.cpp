@@ -510,7 +510,6 @@ class ExactCase final : public OitCase {
   }
 
   void build_capture() {
-    capture_defines_ = lists_->defines();
     capture_ = build_capture_programs(
         *lists_, ctx_, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
         passes_.geometry_defines());
@@ -526,15 +525,16 @@ class ExactCase final : public OitCase {
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     for (const auto& prog : capture_) passes_.bind_geometry(prog.get());
-    int r = lists_->capture(ids(capture_), [&] { passes_.transparent().draw(); });
-    if (lists_->defines() != capture_defines_) {
-      // The pool grew past a texel buffer's limit into more chunks than the capture programs were
-      // built for (fragment_storage.hpp): the fragments past them were not stored. Rebuild for the
-      // new layout and capture again (the first capture, in prepare, before any resolve is built).
-      build_capture();
-      for (const auto& prog : capture_) passes_.bind_geometry(prog.get());
-      r += 1 + lists_->capture(ids(capture_), [&] { passes_.transparent().draw(); });
-    }
+    // Where the pool grows into more chunks than the programs were built for, they are rebuilt for the
+    // new layout and the frame captured again (the first capture, in prepare, before any resolve is built).
+    int r = capture_complete(
+        *lists_, capture_,
+        [&] {
+          build_capture();
+          for (const auto& prog : capture_) passes_.bind_geometry(prog.get());
+          return std::move(capture_);
+        },
+        [&] { passes_.transparent().draw(); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     passes_.end_geometry();
     return r;
@@ -694,7 +694,6 @@ class ExactCase final : public OitCase {
   glm::mat4 view_proj_;
   std::unique_ptr<FragmentStorage> lists_;
   std::vector<gl::Program> capture_;  // one program per capture pass of the storage
-  Defines capture_defines_;           // the storage's defines they were built with
   gl::Program base_, count_, mask_;
   gl::Buffer histogram_;
   std::vector<unsigned> interval_tops_, interval_pixels_;

@@ -16,13 +16,17 @@ VisibleFragments capture_visible_fragments(ScenePasses& fx, const glm::mat4& vie
   const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
   auto lists = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pixels * 4, false, {},
                                      capture_budget(fx.mesh(), view_proj, ctx, fx.opaque() ? 2 : 1));
-  auto capture = build_capture_programs(
-      *lists, ctx, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
-      fx.geometry_defines());
-  for (const auto& prog : capture) {
-    set_view_proj(prog, view_proj);
-    fx.bind_geometry(prog.get());
-  }
+  auto build = [&] {
+    auto programs = build_capture_programs(
+        *lists, ctx, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
+        fx.geometry_defines());
+    for (const auto& prog : programs) {
+      set_view_proj(prog, view_proj);
+      fx.bind_geometry(prog.get());
+    }
+    return programs;
+  };
+  auto capture = build();
   // Colour writes are off: the target only gives the capture the view's size.
   RenderTarget target(ctx.width(), ctx.height(), GL_R8);
   target.bind();
@@ -30,7 +34,7 @@ VisibleFragments capture_visible_fragments(ScenePasses& fx, const glm::mat4& vie
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  lists->capture(ids(capture), [&] { fx.transparent().draw(); });
+  capture_complete(*lists, capture, build, [&] { fx.transparent().draw(); });
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   v.host = visible_fragments(lists->read_back(), v.backdrop, v.hidden);
   return v;

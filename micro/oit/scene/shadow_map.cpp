@@ -233,15 +233,20 @@ OpacityShadowMap::LightFragments& OpacityShadowMap::light_fragments() {
   light_ = std::make_unique<LightFragments>();
   RenderTarget target(resolution_, resolution_, GL_RGBA8);
   FragmentLists lists(resolution_, resolution_, static_cast<size_t>(resolution_) * resolution_ * 8, false);
-  auto programs = build_capture_programs(
-      lists, ctx_, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "shadow/light_capture.frag"}});
-  for (const auto& p : programs)
-    glProgramUniformMatrix4fv(p.get(), glGetUniformLocation(p.get(), "viewProj"), 1, GL_FALSE, &light_view_proj_[0][0]);
+  auto build = [&] {
+    auto built = build_capture_programs(
+        lists, ctx_, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "shadow/light_capture.frag"}});
+    for (const auto& p : built)
+      glProgramUniformMatrix4fv(p.get(), glGetUniformLocation(p.get(), "viewProj"), 1, GL_FALSE,
+                                &light_view_proj_[0][0]);
+    return built;
+  };
+  auto programs = build();
   target.bind();
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  lists.capture(ids(programs), [&] {
+  capture_complete(lists, programs, build, [&] {
     glBindVertexArray(vao_.get());
     for (const auto& set : sets_) {  // every primitive, numbered as the keys are
       for (const auto& p : programs)
