@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel_rows.hpp"
+
 namespace oitbench::oit {
 
 namespace {
@@ -413,17 +415,24 @@ unsigned pack_rgba8(glm::vec4 v) {
 }
 
 ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const ApproxSettings& st) {
-  size_t pixels = l.heads.size();
+  const size_t pixels = l.heads.size();
   const int n = st.nodes;
   ApproxModel m;
   m.rgb.resize(pixels * 3);
-  std::vector<ArrivedFragment> frags;
-  std::vector<Node> s(n);
   using T = ApproxTechnique;
   const T tech = st.technique;
   const bool laat = tech == T::Laat, relative = tech == T::Uat || tech == T::Uhat || laat;
-  if (laat) s.resize(n + 1);  // the head slot
-  for (size_t p = 0; p < pixels; ++p) {
+  const size_t row = static_cast<size_t>(std::max(1, l.width));
+  // Each thread's scratch: the pixel's fragments and its node array (LAAT's has one more: its head).
+  struct Scratch {
+    std::vector<ArrivedFragment> frags;
+    std::vector<Node> s;
+  };
+  std::vector<Scratch> scratch(parallel_row_threads((pixels + row - 1) / row, st.threads));
+  for (auto& sc : scratch) sc.s.resize(static_cast<size_t>(n) + (laat ? 1 : 0));
+  parallel_rows(pixels, row, st.threads, [&](unsigned thread, size_t p) {
+    std::vector<ArrivedFragment>& frags = scratch[thread].frags;
+    std::vector<Node>& s = scratch[thread].s;
     arrival_order(l, p, frags);
     const glm::vec3 bg = backdrop.at(p);
     glm::vec3 c = bg;
@@ -443,7 +452,7 @@ ApproxModel approx_model(const HostLists& l, const Backdrop& backdrop, const App
                                               : at_pixel(frags, s, relative, laat, st.unguarded, bg);
     }
     for (int k = 0; k < 3; ++k) m.rgb[p * 3 + k] = c[k];
-  }
+  });
   return m;
 }
 

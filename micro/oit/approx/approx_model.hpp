@@ -21,13 +21,15 @@ struct ApproxSettings {
   bool htgs = false;               // HT: HTGS's configuration (ht_variant=htgs)
   glm::vec2 near_far{0.1f, 10.f};  // the projection's planes (WBOIT eq7 works on view distance)
   float early_stop = 0;            // GLOBAL-SORT: 3DGS's early termination threshold (0: off)
+  unsigned threads = 0;            // the model's CPU threads (0: every core); its result does not depend on it
 };
 
 struct ApproxModel {
   std::vector<float> rgb;  // 3 floats per pixel, background where no fragment landed
   std::string error;       // why the model could not be built where it could not, else empty
 };
-// The technique's own CPU model on the captured fragments (see the header comment).
+// The technique's own CPU model on the captured fragments (see the header comment); pixels are
+// independent, so their rows are spread over the cores (core/parallel_rows.hpp).
 ApproxModel approx_model(const HostLists& lists, const Backdrop& backdrop, const ApproxSettings& s);
 
 // WINDOW-SORT's model (shaders/approx/insert/window.glsl): each pixel's fragments in the global order
@@ -35,8 +37,10 @@ ApproxModel approx_model(const HostLists& lists, const Backdrop& backdrop, const
 // near to far), each with its depth key from `keys` (the same fragments in the same arrival order, captured
 // with the case's own splat_depth), through a sorted window of `window` fragments whose nearest is blended
 // front to back whenever it overflows, then the window flushed in order. A pixel whose two captures hold
-// different fragment counts is an error of the model.
-ApproxModel window_sort_model(const HostLists& order, const HostLists& keys, const Backdrop& backdrop, int window);
+// different fragment counts is an error of the model (the first such pixel in pixel order). `threads`: as
+// ApproxSettings::threads.
+ApproxModel window_sort_model(const HostLists& order, const HostLists& keys, const Backdrop& backdrop, int window,
+                              unsigned threads = 0);
 // packUnorm4x8 on the CPU: a fragment's colour as the k-buffer nodes hold it.
 unsigned pack_rgba8(glm::vec4 v);
 

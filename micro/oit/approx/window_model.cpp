@@ -1,8 +1,10 @@
 // WINDOW-SORT's CPU model (approx_model.hpp): the windowed sort of shaders/approx/insert/window.glsl on
 // the captured fragments, replayed in the global order the GPU draws the splats in.
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
+#include "core/parallel_rows.hpp"
 #include "oit/approx/approx_model.hpp"
 
 namespace oitbench::oit {
@@ -52,7 +54,8 @@ glm::vec3 window_pixel(const std::vector<ArrivedFragment>& order, const std::vec
 
 }  // namespace
 
-ApproxModel window_sort_model(const HostLists& order, const HostLists& keys, const Backdrop& backdrop, int window) {
+ApproxModel window_sort_model(const HostLists& order, const HostLists& keys, const Backdrop& backdrop, int window,
+                              unsigned threads) {
   const size_t pixels = keys.heads.size();
   ApproxModel m;
   m.rgb.resize(pixels * 3);
@@ -61,22 +64,39 @@ ApproxModel window_sort_model(const HostLists& order, const HostLists& keys, con
               std::to_string(pixels);
     return m;
   }
-  std::vector<ArrivedFragment> by_order, by_key;
-  std::vector<size_t> index;
-  std::vector<Pending> pending;
-  for (size_t p = 0; p < pixels; ++p) {
-    arrival_order(order, p, by_order);
-    arrival_order(keys, p, by_key);
+  const size_t row = static_cast<size_t>(std::max(1, keys.width));
+  // Each thread's scratch, and the first pixel (in pixel order, whichever thread met it) whose captures differ.
+  struct Scratch {
+    std::vector<ArrivedFragment> by_order, by_key;
+    std::vector<size_t> index;
+    std::vector<Pending> pending;
+    size_t first_error = std::numeric_limits<size_t>::max();
+    std::string error;
+  };
+  std::vector<Scratch> scratch(parallel_row_threads((pixels + row - 1) / row, threads));
+  parallel_rows(pixels, row, threads, [&](unsigned thread, size_t p) {
+    Scratch& sc = scratch[thread];
+    arrival_order(order, p, sc.by_order);
+    arrival_order(keys, p, sc.by_key);
     glm::vec3 c = backdrop.at(p);
-    if (by_order.size() != by_key.size()) {
-      if (m.error.empty())
-        m.error = "pixel " + std::to_string(p) + ": " + std::to_string(by_order.size()) +
-                  " fragments captured with the centre key, " + std::to_string(by_key.size()) + " with the case's key";
+    if (sc.by_order.size() != sc.by_key.size()) {
+      if (p < sc.first_error) {
+        sc.first_error = p;
+        sc.error = "pixel " + std::to_string(p) + ": " + std::to_string(sc.by_order.size()) +
+                   " fragments captured with the centre key, " + std::to_string(sc.by_key.size()) +
+                   " with the case's key";
+      }
     } else {
-      c = window_pixel(by_order, by_key, static_cast<size_t>(window), c, index, pending);
+      c = window_pixel(sc.by_order, sc.by_key, static_cast<size_t>(window), c, sc.index, sc.pending);
     }
     for (int k = 0; k < 3; ++k) m.rgb[p * 3 + k] = c[k];
-  }
+  });
+  size_t first = std::numeric_limits<size_t>::max();
+  for (const Scratch& sc : scratch)
+    if (sc.first_error < first) {
+      first = sc.first_error;
+      m.error = sc.error;
+    }
   return m;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/parallel_rows.hpp"
 #include "oit/case_support.hpp"
 
 namespace oitbench::oit {
@@ -254,9 +255,16 @@ std::vector<double> stochastic_model(const std::vector<CoverageFragment>& fragme
   for (const auto& f : fragments)
     if (f.pixel < pixels) by_pixel[f.pixel].push_back(&f);
   std::vector<double> out(pixels * 3);
-  std::vector<float> depth(S);
-  std::vector<ArrivedFragment> frags;
-  for (size_t px = 0; px < pixels; ++px) {
+  const size_t row = static_cast<size_t>(std::max(1, s.width));
+  struct Scratch {  // each thread's
+    std::vector<float> depth;
+    std::vector<ArrivedFragment> frags;
+  };
+  std::vector<Scratch> scratch(parallel_row_threads((pixels + row - 1) / row, s.threads));
+  for (auto& sc : scratch) sc.depth.resize(static_cast<size_t>(S));
+  parallel_rows(pixels, row, s.threads, [&](unsigned thread, size_t px) {
+    std::vector<float>& depth = scratch[thread].depth;
+    std::vector<ArrivedFragment>& frags = scratch[thread].frags;
     const uint32_t x = static_cast<uint32_t>(px % s.width), y = static_cast<uint32_t>(px / s.width);
     glm::dvec4 acc(0.0);
     for (int pass = 0; pass < s.passes; ++pass) {
@@ -278,7 +286,7 @@ std::vector<double> stochastic_model(const std::vector<CoverageFragment>& fragme
     for (const auto& fr : frags) total *= 1.0 - fr.colour.a;
     glm::dvec3 behind(bg.at(px)), c = acc.a > 0 ? glm::dvec3(acc) * (1.0 - total) / acc.a + behind * total : behind;
     for (int k = 0; k < 3; ++k) out[px * 3 + k] = c[k];
-  }
+  });
   return out;
 }
 

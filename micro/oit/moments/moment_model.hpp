@@ -53,8 +53,10 @@ struct StochasticSetup {
   int msaa_samples = 4;  // per pass
   int passes = 1;        // samples_per_pixel = msaa_samples * passes
   uint32_t frame_seed = 0;
+  unsigned threads = 0;  // the model's CPU threads (0: every core); its result does not depend on it
 };
-// RGB per pixel; `centre` (the ordinary capture) gives the total transmittance pass's fragments.
+// RGB per pixel; `centre` (the ordinary capture) gives the total transmittance pass's fragments. Pixels
+// are independent: their rows are spread over the cores (core/parallel_rows.hpp).
 std::vector<double> stochastic_model(const std::vector<CoverageFragment>& fragments, const HostLists& centre,
                                      const Backdrop& background, const StochasticSetup& s);
 

@@ -29,6 +29,7 @@ struct SlabSetup {
   int layers = 4;   // slab_layers
   int samples = 8;  // samples_per_pixel: 4, 8, 16, 32
   uint32_t frame_seed = 0;
+  unsigned threads = 0;  // the model's CPU threads (0: every core); its result does not depend on it
 };
 // One layer as shaders/slab/layers.glsl keeps it.
 struct SlabLayer {

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/parallel_rows.hpp"
 #include "oit/reference/reference.hpp"
 #include "oit/slab/slab.hpp"
 
@@ -56,25 +57,33 @@ void slab_insert(std::vector<SlabLayer>& layers, int max_layers, SlabLayer f) {
 
 std::vector<double> slab_model(const std::vector<CoverageFragment>& fragments, const Backdrop& bg, const SlabSetup& s) {
   const size_t pixels = static_cast<size_t>(s.width) * s.height;
-  std::vector<std::vector<SlabLayer>> layers(pixels);
-  for (const auto& f : fragments) {
-    if (f.pixel >= pixels) continue;
-    const uint32_t x = f.pixel % static_cast<uint32_t>(s.width), y = f.pixel / static_cast<uint32_t>(s.width);
-    SlabLayer l{f.depth, slab_mask(s.frame_seed, x, y, f.primitive, f.colour >> 24, s.samples), f.colour & 0xFFFFFFu};
-    slab_insert(layers[f.pixel], s.layers, l);
-  }
+  // Each pixel's fragments in the record's order (the order they reached it); pixels are independent, so
+  // their rows are spread over the cores, each pixel's insertions made in that order.
+  std::vector<std::vector<const CoverageFragment*>> by_pixel(pixels);
+  for (const auto& f : fragments)
+    if (f.pixel < pixels) by_pixel[f.pixel].push_back(&f);
   std::vector<double> out(pixels * 3);
-  for (size_t px = 0; px < pixels; ++px) {
+  const size_t row = static_cast<size_t>(std::max(1, s.width));
+  std::vector<std::vector<SlabLayer>> scratch(parallel_row_threads((pixels + row - 1) / row, s.threads));
+  parallel_rows(pixels, row, s.threads, [&](unsigned thread, size_t px) {
+    std::vector<SlabLayer>& layers = scratch[thread];
+    layers.clear();
+    const uint32_t x = static_cast<uint32_t>(px % static_cast<size_t>(s.width)),
+                   y = static_cast<uint32_t>(px / static_cast<size_t>(s.width));
+    for (const CoverageFragment* f : by_pixel[px])
+      slab_insert(
+          layers, s.layers,
+          {f->depth, slab_mask(s.frame_seed, x, y, f->primitive, f->colour >> 24, s.samples), f->colour & 0xFFFFFFu});
     glm::dvec3 c(0.0);
     int covered = 0;
-    for (const auto& l : layers[px]) {
+    for (const auto& l : layers) {
       const int n = std::popcount(l.mask);
       c += glm::dvec3(unpack_rgba8(l.colour)) * static_cast<double>(n);
       covered += n;
     }
     c = (c + glm::dvec3(bg.at(px)) * static_cast<double>(s.samples - covered)) / static_cast<double>(s.samples);
     for (int k = 0; k < 3; ++k) out[px * 3 + k] = c[k];
-  }
+  });
   return out;
 }
 
