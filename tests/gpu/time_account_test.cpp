@@ -154,4 +154,49 @@ TEST(TimeAccount, ASharedReferenceKeepsEveryCheck) {
   EXPECT_EQ(totals, 4u);
 }
 
+// Every CPU-model-checked case (the approximate techniques, MBOIT, WOIT, STOCHASTIC, SLAB) of a run that
+// sees the same fragments shares one reference view (visible_capture.hpp: reference_view): a wrong result (in the key)
+// is still invalid beside valid cases of the same view, and each case's error is what it is in a run of its own.
+TEST(TimeAccount, EveryModelCheckedCaseSharesTheReferenceAndKeepsEveryCheck) {
+  const auto dir = temp_dir("account-model-reference");
+  const std::vector<std::string> common = {"--set",        "scene=planes", "--set", "view=rev", "--resolution",
+                                           "64x64",        "--reps",       "1",     "--warmup", "0",
+                                           "--no-progress"};
+  auto run = [&](const std::string& name, std::vector<std::string> sets) {
+    std::vector<std::string> args = {"run", "oit", "--out", (dir / name).string()};
+    args.insert(args.end(), sets.begin(), sets.end());
+    args.insert(args.end(), common.begin(), common.end());
+    auto r = run_oitbench(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return read_csv_rows(dir / name);
+  };
+  const std::vector<std::string> shared = {"MLAB", "MBOIT", "WOIT", "STOCHASTIC", "SLAB"};
+  const auto rows =
+      run("shared.csv", {"--set", "technique=MLAB,MBOIT,WOIT,STOCHASTIC,SLAB", "--set", "fault=none,wrong-result"});
+  std::map<std::string, Row> alone;
+  for (const std::string& t : {std::string("MBOIT"), std::string("STOCHASTIC")}) {
+    const auto own = run(t + ".csv", {"--set", "technique=" + t});
+    ASSERT_FALSE(own.empty()) << t;
+    alone[t] = own.back();
+  }
+  size_t totals = 0;
+  for (const auto& row : rows) {
+    if (row.at("pass") != "total") continue;
+    ++totals;
+    const std::string what = row.at("technique") + " " + row.at("fault");
+    if (row.at("fault") == "wrong-result") {
+      EXPECT_EQ(row.at("status"), "invalid") << what;
+      continue;
+    }
+    EXPECT_EQ(row.at("status"), "ok") << what << ": " << row.at("reason");
+    if (row.at("technique") == "MLAB")  // the approximate cases report against the scene's planes too
+      EXPECT_FALSE(row.at("truth_rmse").empty()) << what << ": the geometric reference (planes are analytic)";
+    auto it = alone.find(row.at("technique"));
+    if (it == alone.end()) continue;
+    for (const char* col : {"rmse", "model_rmse", "total_fragments"})
+      EXPECT_EQ(row.at(col), it->second.at(col)) << what << " " << col;
+  }
+  EXPECT_EQ(totals, 2 * shared.size());
+}
+
 }  // namespace oitbench::test

@@ -114,13 +114,15 @@ class ApproxCase final : public OitCase {
     // Analytic scenes: the truth from the scene's own planes (the capture keeps RGBA8 colours).
     auto referencing = ctx.phase(Phase::Reference);
     if (passes_.effects() == std::vector<std::string>{"transparency"})  // the geometry knows no other effect
-      geometry_ = geometric_reference(scene_, view, p.get("detail") == "small" ? Detail::Small : Detail::Full,
-                                      near_far(view, passes_.mesh()), width_, height_, FragColour::RGBA8);
+      geometry_ = shared_geometric_reference(ctx.shared(), scene_, view,
+                                             p.get("detail") == "small" ? Detail::Small : Detail::Full,
+                                             near_far(view, passes_.mesh()), width_, height_, FragColour::RGBA8);
     // The planes back out of the perspective matrix (glm::perspective's layout).
     glm::mat4 pm = vp * glm::inverse(glm::lookAt(view.eye, view.target, view.up));
     settings_.near_far = {pm[3][2] / (pm[2][2] - 1.0f), pm[3][2] / (pm[2][2] + 1.0f)};
 
-    ref_ = reference_view(p, ctx, vp);
+    // The view's fragments, once per run and view (visible_capture.hpp): the exact reference and the CPU model.
+    ref_ = reference_view(passes_, vp, p, ctx);
     if (splat_order_) global_sort_model_view(p, ctx, vp);
     referencing.end();
 
@@ -261,45 +263,6 @@ class ApproxCase final : public OitCase {
     ParamSet centre(values);
     ScenePasses fx(centre, ctx);
     centre_host_ = std::make_unique<HostLists>(std::move(capture_visible_fragments(fx, vp, centre, ctx).host));
-  }
-
-  // The fragments, once, for the exact reference and the technique's CPU model.
-  // The reference side of the view: every transparent fragment (with the opaque effect, those the CPU's
-  // depth test keeps: the reference does not trust the technique's own depth test), the backdrop, their
-  // statistics and exact composite. The exact reference and every model work on these. The run's
-  // approximate cases that see the same fragments (reference_key) share one, so only the first pays
-  // the capture, the read-back and the composite; each case still compares its own image with it.
-  struct ReferenceView {
-    Backdrop backdrop;
-    size_t hidden = 0;
-    HostLists host;
-    ListStats stats;
-    std::vector<double> composite;
-  };
-
-  std::shared_ptr<const ReferenceView> reference_view(const ParamSet& p, CaseContext& ctx, const glm::mat4& vp) {
-    auto make = [&] {
-      auto r = std::make_shared<ReferenceView>();
-      VisibleFragments seen = capture_visible_fragments(passes_, vp, p, ctx);
-      r->backdrop = std::move(seen.backdrop);
-      r->host = std::move(seen.host);
-      r->hidden = seen.hidden;
-      r->stats = list_stats(r->host);
-      r->composite = composite_reference(r->host, r->backdrop);
-      return std::shared_ptr<const ReferenceView>(std::move(r));
-    };
-    if (!ctx.shared()) return make();
-    // One kept beside the live cases' own: a view's fragments are big (a pool of them per pixel).
-    return ctx.shared()->get<ReferenceView>(reference_key(p, ctx), make, 1);
-  }
-
-  // Everything the reference fragments depend on: the size, and every parameter but the technique and
-  // the technique parameters (Technique::params), except `capture`, the storage they are captured in.
-  static std::string reference_key(const ParamSet& p, const CaseContext& ctx) {
-    std::string key = std::to_string(ctx.width()) + "x" + std::to_string(ctx.height());
-    for (const auto& [k, v] : p.values())
-      if (k == "capture" || (k != "technique" && techniques_reading(k).empty())) key += " " + k + "=" + v;
-    return key;
   }
 
   GLuint opaque_texture() const override { return passes_.opaque_texture(); }
@@ -541,7 +504,7 @@ class ApproxCase final : public OitCase {
   int width_, height_;
   ScenePasses passes_;
   const SceneDesc& scene_;
-  std::optional<GeometricReference> geometry_;
+  std::shared_ptr<const GeometricReference> geometry_;  // analytic scenes; shared by the run
   RenderTarget out_, accum_;
   FullscreenTriangle quad_;
   std::shared_ptr<const ReferenceView> ref_;

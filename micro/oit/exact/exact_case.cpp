@@ -390,9 +390,11 @@ class ExactCase final : public OitCase {
   void check_against_planes(const std::vector<float>& rgba, const ListStats& stats,
                             std::map<std::string, std::string>& m, std::vector<std::string>& problems) {
     auto referencing = ctx_.phase(Phase::Reference);
+    // Once per run for a scene, view, size and format (shared_geometric_reference's key).
     auto geo = passes_.effects() == std::vector<std::string>{"transparency"}
-                   ? geometric_reference(scene_, view_, detail_, near_far_, width_, height_, format_.colour)
-                   : std::nullopt;
+                   ? shared_geometric_reference(ctx_.shared(), scene_, view_, detail_, near_far_, width_, height_,
+                                                format_.colour)
+                   : nullptr;
     referencing.end();
     if (geo) {
       GeometricCheck g = check_against_geometry(*geo, rgba, stats.depth, scene_.background, tolerance_);

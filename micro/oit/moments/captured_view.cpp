@@ -40,10 +40,7 @@ CapturedView capture_view(const ParamSet& p, CaseContext& ctx) {
   hi = std::clamp(hi * 1.001f, lo * 1.001f, v.near_far.y);
   v.depth_range = {lo, hi};
   const auto referencing = ctx.phase(Phase::Reference);  // the fragments the references composite
-  VisibleFragments seen = capture_visible_fragments(*v.fx, v.view_proj, p, ctx);
-  v.backdrop = std::move(seen.backdrop);
-  v.fragments = std::move(seen.host);
-  v.hidden = seen.hidden;
+  v.ref = reference_view(*v.fx, v.view_proj, p, ctx);
   return v;
 }
 
@@ -57,7 +54,7 @@ void require_depth_bounds(const CapturedView& view, const std::string& technique
 bool record_coverage(const CapturedView& view, GLuint framebuffer, int width, int height, const gl::Program& program,
                      std::vector<CoverageFragment>& out) {
   const GLuint words = STOCHASTIC_CAPTURE_WORDS;
-  GLuint capacity = static_cast<GLuint>(view.fragments.nodes.size() * 2 + 1024);
+  GLuint capacity = static_cast<GLuint>(view.ref->host.nodes.size() * 2 + 1024);
   for (int attempt = 0; attempt < 2; ++attempt) {
     gl::Buffer buffer = gl::make_buffer();
     size_t bytes = sizeof(GLuint) * (1 + static_cast<size_t>(capacity) * words);
@@ -89,7 +86,7 @@ bool record_coverage(const CapturedView& view, GLuint framebuffer, int width, in
     for (size_t i = 0; i < count; ++i) {
       const GLuint* w = &data[i * words];
       // The opaque effect: the CPU hides what lies behind the opaque depth (the record keeps all).
-      if (view.backdrop.hides(w[0], std::bit_cast<float>(w[4]))) continue;
+      if (view.ref->backdrop.hides(w[0], std::bit_cast<float>(w[4]))) continue;
       // gl_FragDepth is clamped to the depth range: the centre depth of a fragment whose centre lies
       // outside its primitive is extrapolated and can leave [0, 1].
       out.push_back({w[0], w[1], w[2], w[3], std::clamp(std::bit_cast<float>(w[4]), 0.0f, 1.0f)});
@@ -155,17 +152,14 @@ CapturedViewCase::ModelValidation CapturedViewCase::validate_against(
   auto reading = PhaseClock::Scope(phases_, Phase::Readback);
   mv.rgb = rgb_of(out_.read_rgba32f());
   reading.end();
-  const HostLists& host = view_.fragments;
-  mv.stats = list_stats(host);
-  auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-  auto ref = composite_reference(host, view_.backdrop);
-  referencing.end();
+  mv.stats = view_.ref->stats;
+  const std::vector<double>& ref = view_.ref->composite;
   ApproxError err = approx_error(mv.rgb, ref);
   m["total_fragments"] = std::to_string(mv.stats.total_fragments);
   m["peak_depth"] = std::to_string(mv.stats.peak_depth);
   m["mean_depth"] = fmt(mv.stats.mean_depth);
   m["polygons"] = std::to_string(view_.fx->mesh().polygons());
-  if (view_.fx->opaque()) m["hidden_fragments"] = std::to_string(view_.hidden);
+  if (view_.fx->opaque()) m["hidden_fragments"] = std::to_string(view_.ref->hidden);
   m["rmse"] = fmt(err.rmse);
   m["psnr"] = fmt(err.psnr);
   m["max_abs_error"] = fmt(err.max_abs_error);

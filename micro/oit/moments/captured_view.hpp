@@ -11,23 +11,25 @@
 #include "oit/moments/moment_model.hpp"
 #include "oit/moments/moments.hpp"
 #include "oit/reference/reference.hpp"
+#include "oit/reference/visible_capture.hpp"
 
 namespace oitbench::oit {
 
 // What both cases start from: the scene's mesh for the view, its camera, and the view's fragments
-// captured once (PPLL) for the exact reference and the CPU models.
+// captured once per run and view (visible_capture.hpp: reference_view, shared with every other
+// CPU-model-checked case of the run that sees the same fragments) for the exact reference and the CPU models.
 struct CapturedView {
   // The scene's effects (scene_passes.hpp): the opaque pass, the shading, the backdrop; these
   // techniques test the opaque depth in their shaders (opaque_hides, depth_sampler_defines()).
   std::unique_ptr<ScenePasses> fx;
   const SceneDesc* scene = nullptr;
   const GpuMesh* mesh = nullptr;  // fx's transparent primitives
-  Backdrop backdrop;              // the opaque colour and depth, read back for the references
-  size_t hidden = 0;              // transparent fragments the CPU hid behind the opaque depth
   glm::mat4 view_proj{1.0f};
   glm::vec2 near_far{0.1f, 10.f};
   glm::vec2 depth_range{0.1f, 10.f};  // nearest and farthest vertex along the view direction
-  HostLists fragments;                // the visible ones (with the opaque effect, hidden by the CPU)
+  // The opaque colour and depth read back for the references, the visible fragments (with the opaque
+  // effect, hidden by the CPU: `hidden` of them), their statistics and exact composite.
+  std::shared_ptr<const ReferenceView> ref;
 };
 CapturedView capture_view(const ParamSet& p, CaseContext& ctx);
 // MBOIT's and WOIT's warp needs depth_range, the extent of the mesh's vertices; a view of splats has none

@@ -124,8 +124,8 @@ class MboitCase final : public CapturedViewCase {
 
   Validation validate() override {
     size_t rebiased = 0;
-    ModelValidation mv =
-        validate_against([&] { return mboit_model(view_.fragments, view_.backdrop, s_, &rebiased); }, kMomentTolerance);
+    ModelValidation mv = validate_against(
+        [&] { return mboit_model(view_.ref->host, view_.ref->backdrop, s_, &rebiased); }, kMomentTolerance);
     auto& m = mv.v.metrics;
     const size_t total = mv.stats.total_fragments;
     m["moment_bias"] = fmt(s_.bias);

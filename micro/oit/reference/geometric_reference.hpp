@@ -13,10 +13,12 @@
 // lies within 1e-5 (relative) of the near or far plane, are ambiguous (the rasterizer's snapping
 // decides them) and left out of every comparison (counted in ambiguous_pixels).
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/shared_cache.hpp"
 #include "oit/capture/fragment_storage.hpp"
 #include "oit/scene/scene.hpp"
 
@@ -39,6 +41,18 @@ glm::dvec4 quantise_colour(glm::vec4 c, FragColour format);
 // view_projection() put in the matrix the capture used.
 std::optional<GeometricReference> geometric_reference(const SceneDesc& scene, const View& view, Detail detail,
                                                       glm::vec2 near_far, int width, int height, FragColour format);
+// The same through the run's shared cache (`cache` null: computed here), so the run's cases of one scene,
+// view, size and format share one (the rows are spread over the cores). Keyed by everything it reads:
+// the planes themselves (not the scene's name), the background, the camera, near/far, the size and the
+// format, each number exactly (hex floats), so a changed scene file or parameter can never hit a stale
+// entry. Null when the scene is not analytic.
+std::shared_ptr<const GeometricReference> shared_geometric_reference(SharedCache* cache, const SceneDesc& scene,
+                                                                     const View& view, Detail detail,
+                                                                     glm::vec2 near_far, int width, int height,
+                                                                     FragColour format);
+// The key shared_geometric_reference() stores under (empty when the scene is not analytic).
+std::string geometric_reference_key(const SceneDesc& scene, const View& view, Detail detail, glm::vec2 near_far,
+                                    int width, int height, FragColour format);
 
 // The image of a case against both references (colours in [0, 1], RGBA as the resolves write it:
 // alpha 0 = nothing resolved, the background shows).

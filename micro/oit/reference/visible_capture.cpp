@@ -5,6 +5,7 @@
 #include "oit/case_support.hpp"
 #include "oit/scene/coverage_estimate.hpp"
 #include "oit/scene/scene_passes.hpp"
+#include "oit/techniques.hpp"
 
 namespace oitbench::oit {
 
@@ -38,6 +39,33 @@ VisibleFragments capture_visible_fragments(ScenePasses& fx, const glm::mat4& vie
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   v.host = visible_fragments(lists->read_back(), v.backdrop, v.hidden);
   return v;
+}
+
+std::string reference_view_key(const ParamSet& p, const CaseContext& ctx) {
+  std::string key = std::to_string(ctx.width()) + "x" + std::to_string(ctx.height());
+  for (const auto& [k, v] : p.values())
+    if (k == "capture" || (k != "technique" && techniques_reading(k).empty())) key += " " + k + "=" + v;
+  return key;
+}
+
+std::shared_ptr<const ReferenceView> reference_view(ScenePasses& fx, const glm::mat4& view_proj, const ParamSet& p,
+                                                    CaseContext& ctx) {
+  auto make = [&] {
+    auto r = std::make_shared<ReferenceView>();
+    VisibleFragments seen = capture_visible_fragments(fx, view_proj, p, ctx);
+    r->backdrop = std::move(seen.backdrop);
+    r->host = std::move(seen.host);
+    r->hidden = seen.hidden;
+    r->stats = list_stats(r->host);
+    r->composite = composite_reference(r->host, r->backdrop);
+    return std::shared_ptr<const ReferenceView>(std::move(r));
+  };
+  if (!ctx.shared()) return make();
+  // Kept beside the live cases' own: a few views up to 256x256 (the reference runs' sizes; a preset's
+  // requests visit the same scenes one technique after another, so a view comes back after the others'),
+  // one above, where a view's fragments are big (a pool of them per pixel: ~13 M at 512x512 on the hairball).
+  const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
+  return ctx.shared()->get<ReferenceView>(reference_view_key(p, ctx), make, pixels <= 256 * 256 ? 4 : 1);
 }
 
 }  // namespace oitbench::oit

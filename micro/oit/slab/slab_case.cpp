@@ -31,8 +31,9 @@ namespace {
 class SlabCase final : public CapturedViewCase {
  public:
   SlabCase(const ParamSet& p, CaseContext& ctx) : CapturedViewCase(p, ctx), run_seed_(ctx.seed()) {
-    setup_ = {width_, height_, static_cast<int>(p.get_int("slab_layers")),
-              static_cast<int>(p.get_int("samples_per_pixel")), 0};
+    const int layers = static_cast<int>(p.get_int("slab_layers")),
+              samples = static_cast<int>(p.get_int("samples_per_pixel"));
+    setup_ = {width_, height_, layers, samples, 0, 0};  // the model on every core
     const size_t pixels = static_cast<size_t>(width_) * height_;
     layers_ = gl::make_buffer();
     glNamedBufferStorage(layers_.get(),
@@ -90,7 +91,7 @@ class SlabCase final : public CapturedViewCase {
 
   Validation validate() override {
     ModelValidation mv =
-        validate_against([&] { return slab_model(fragments_, view_.backdrop, setup_); }, kSlabTolerance);
+        validate_against([&] { return slab_model(fragments_, view_.ref->backdrop, setup_); }, kSlabTolerance);
     GLuint capped = 0;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(stats_.get(), 0, sizeof(GLuint), &capped);

@@ -41,7 +41,7 @@ class StochasticCase final : public CapturedViewCase {
                         " needs multisampled RGBA32F and DEPTH_COMPONENT32F textures with a sample count "
                         "dividing " +
                         std::to_string(samples) + "; the driver has none");
-    setup_ = {width_, height_, best, samples / best, 0};
+    setup_ = {width_, height_, best, samples / best, 0, 0};  // the model on every core
 
     colour_ = gl::make_texture(GL_TEXTURE_2D_MULTISAMPLE);
     glTextureStorage2DMultisample(colour_.get(), best, GL_RGBA32F, width_, height_, GL_TRUE);
@@ -124,9 +124,9 @@ class StochasticCase final : public CapturedViewCase {
   }
 
   Validation validate() override {
-    ModelValidation mv =
-        validate_against([&] { return stochastic_model(coverage_fragments_, view_.fragments, view_.backdrop, setup_); },
-                         kStochasticTolerance);
+    ModelValidation mv = validate_against(
+        [&] { return stochastic_model(coverage_fragments_, view_.ref->host, view_.ref->backdrop, setup_); },
+        kStochasticTolerance);
     mv.v.metrics["msaa_samples"] = std::to_string(setup_.msaa_samples);
     if (coverage_lost_) mv.problems.push_back("the MSAA coverage record lost fragments");
     return conclude_against(mv, kStochasticTolerance, 0, " (same masks)");

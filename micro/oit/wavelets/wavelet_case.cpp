@@ -96,7 +96,7 @@ class WoitCase final : public CapturedViewCase {
 
   Validation validate() override {
     ModelValidation mv =
-        validate_against([&] { return woit_model(view_.fragments, view_.backdrop, s_); }, kWaveletTolerance);
+        validate_against([&] { return woit_model(view_.ref->host, view_.ref->backdrop, s_); }, kWaveletTolerance);
     mv.v.metrics["model_off_channels"] = std::to_string(mv.check.off);
     if (s_.bits == 16) mv.v.metrics["half_blend_rounding"] = s_.half_truncates ? "toward-zero" : "nearest";
     // Where float and double warp a fragment into different cells, the transmittance of the
