@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
 # Regenerates the reference results on the embedded default (EGL surfaceless; Mesa llvmpipe where there
-# is no GPU) in results/llvmpipe/: every preset in presets/*.json (presets/NAME.csv and NAME_raw.csv),
-# `oitbench info` (info.txt), a few rendered images (images/), the report page (report/index.html) and
-# FINDINGS.md (scripts/findings.py: every measured number, generated from the CSVs).
+# is no GPU) in results/llvmpipe/: every preset in presets/*.json but the opt-in list (presets/NAME.csv
+# and NAME_raw.csv), `oitbench info` (info.txt), a few rendered images (images/), the report page
+# (report/index.html) and FINDINGS.md (scripts/findings.py: every measured number, generated from the CSVs).
 #
-#   scripts/reference_runs.sh                      build, every preset, info, images, report, findings
-#   scripts/reference_runs.sh --only P1,P2         build, those presets, info, report, findings ("images" renders them)
+#   scripts/reference_runs.sh                      build, every preset but the opt-in list, info, images,
+#                                                  report, findings
+#   scripts/reference_runs.sh --with-opt-in        the same and the opt-in list (OPT_IN below: oit-scale,
+#                                                  splats, error-vs-time), timed apart
+#   scripts/reference_runs.sh --only P1,P2         build, those presets (opt-in ones too), info, report,
+#                                                  findings ("images" renders them)
 #   scripts/reference_runs.sh --report-only        the report and the findings from the CSVs already there
 #   scripts/reference_runs.sh --target-ci 3        repeat each case until its median's 95% interval is
 #                                                  within +-3% (default here 5: the reference runs' bound;
@@ -13,6 +17,11 @@
 #   scripts/reference_runs.sh --driver zink --only default,knowles2014-quick,bruell2018-approx
 #                                                  the same on another driver, into results/<its driver>/
 #                                                  (zink over lavapipe: results/zink-lavapipe/)
+#
+# At the end it prints each preset's wall time, the total of the default list and of the opt-in list, and
+# each list's time account (timed samples, compile, warm-up, reference+validation, scene, other) from its
+# rows' phase columns. The CSVs of presets not run (the opt-in list's, by default) stay as they are, and
+# the report and the findings still read them.
 #
 # OITBENCH=path/to/oitbench runs that binary instead of building build/oitbench; it reads presets,
 # shaders and scenes from its own source tree unless OITBENCH_PRESETS / OITBENCH_SHADERS / OITBENCH_SCENES
@@ -37,10 +46,21 @@ RENDERS=(
   "engine-grid-V1-BASE-IMS|--scene engine-grid --view V1 --technique BASE-IMS"
 )
 
+# The opt-in list: presets whose cost is inherent in what they measure, run only with --with-opt-in or
+# when --only names them (docs/scripts.md, "reference_runs.sh", has their measured times):
+#   oit-scale      exact OIT at 1920x1080 up to 7680x4320 with pools of 100 M+ fragments: the allocations,
+#                  captures and CPU references at those sizes (~12 min; 6 of them set-up alone);
+#   splats         10^5, 10^6 and 4*10^6 splats beside the global sort: the analytic splat references of
+#                  millions of splats (over half of its ~40 min is reference and validation);
+#   error-vs-time  every approximate technique beside complete depth peeling (a frame of peeling the
+#                  hairball, planes-deep or the engine grid takes minutes on llvmpipe), 141 cases (~19 min).
+OPT_IN=(oit-scale splats error-vs-time)
+
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
 
 mapfile -t ALL_PRESETS < <(for f in presets/*.json; do basename "$f" .json; done)
 only=""
+with_opt_in=0
 report_only=0
 target_ci=5
 while [ $# -gt 0 ]; do
@@ -49,6 +69,7 @@ while [ $# -gt 0 ]; do
             only=$2; shift 2 ;;
     --only=*) only=${1#--only=}; shift ;;
     --report-only) report_only=1; shift ;;
+    --with-opt-in) with_opt_in=1; shift ;;
     --target-ci) [ $# -ge 2 ] || { echo "reference_runs.sh: --target-ci needs a percentage" >&2; exit 2; }
                  target_ci=$2; shift 2 ;;
     --driver) [ $# -ge 2 ] || { echo "reference_runs.sh: --driver needs a name" >&2; exit 2; }
@@ -58,7 +79,19 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-presets=("${ALL_PRESETS[@]}")
+is_opt_in() { local p; for p in "${OPT_IN[@]}"; do [ "$p" = "$1" ] && return 0; done; return 1; }
+for name in "${OPT_IN[@]}"; do
+  [ -f "presets/$name.json" ] || { echo "reference_runs.sh: the opt-in list names '$name', which is no preset" >&2; exit 2; }
+done
+if [ $with_opt_in -eq 1 ] && [ -n "$only" ]; then
+  echo "reference_runs.sh: --with-opt-in runs every preset; with --only, name the opt-in presets (${OPT_IN[*]}) in --only instead" >&2
+  exit 2
+fi
+
+# Every preset but the opt-in list, then (--with-opt-in) the opt-in list.
+presets=()
+for name in "${ALL_PRESETS[@]}"; do is_opt_in "$name" || presets+=("$name"); done
+[ $with_opt_in -eq 1 ] && presets+=("${OPT_IN[@]}")
 render_images=1
 if [ -n "$only" ]; then
   presets=()
@@ -70,7 +103,7 @@ if [ -n "$only" ]; then
     elif [ -f "presets/$name.json" ]; then
       presets+=("$name")
     else
-      echo "reference_runs.sh: no preset '$name'; presets: ${ALL_PRESETS[*]} (or 'images')" >&2
+      echo "reference_runs.sh: no preset '$name'; presets: ${ALL_PRESETS[*]} (or 'images'; opt-in: ${OPT_IN[*]})" >&2
       exit 2
     fi
   done
@@ -130,6 +163,7 @@ fi
 
 mkdir -p "$OUT/presets"
 i=0
+timed=()  # LIST PRESET SECONDS CSV, four words per preset run, for the time account at the end
 for name in "${presets[@]}"; do
   i=$((i + 1))
   csv=$OUT/presets/$name.csv
@@ -142,7 +176,11 @@ for name in "${presets[@]}"; do
   [ $rc -eq 130 ] && { say "interrupted during $name"; exit 130; }
   say "preset $name: exit $rc after $(((SECONDS - t0) / 60))m$(((SECONDS - t0) % 60))s"
   [ $rc -eq 0 ] || failed+=("$name (exit $rc)")
+  list=default
+  is_opt_in "$name" && list=opt-in
+  timed+=("$list" "$name" "$((SECONDS - t0))" "$csv")
 done
+presets_s=$((SECONDS - started))
 
 say "info: $OITBENCH info > $OUT/info.txt"
 # The data folders it names relative to the repository (no machine's paths in a committed file).
@@ -165,4 +203,13 @@ if [ $render_images -eq 1 ]; then
 fi
 
 write_report
+# Where the time went (docs/measurement.md "Where a run's time goes"): per preset, per list.
+if [ ${#timed[@]} -gt 0 ]; then
+  say "time: the presets $((presets_s / 60))m$((presets_s % 60))s of the script's $(((SECONDS - started) / 60))m$(((SECONDS - started) % 60))s"
+  PYTHONPATH="scripts${PYTHONPATH:+:$PYTHONPATH}" "$PYTHON" -c 'import sys
+from oitbench import timeaccount
+a = sys.argv[1:]
+print("\n".join(timeaccount.list_lines([(a[i], a[i + 1], float(a[i + 2]), a[i + 3]) for i in range(0, len(a), 4)])))' \
+    "${timed[@]}" || failed+=("time account")
+fi
 finish

@@ -100,3 +100,45 @@ def accounts_of_file(path):
     for r in rows:
         acc.add(r)
     return acc
+
+
+def minutes(seconds):
+    """'12m05s' of a number of seconds."""
+    s = int(round(seconds))
+    return f"{s // 60}m{s % 60:02d}s"
+
+
+def list_lines(runs, prefix="[reference] time"):
+    """The time account of scripts/reference_runs.sh: `runs` is [(list, preset, wall_s, csv path)] in the
+    order they ran, `list` 'default' or 'opt-in'. One line per preset (its wall time as the script
+    measured it, its cases' shares), then per list its total wall time and the shares of its cases' wall
+    time (timed samples, compile, warm-up, reference+validation, scene, other), and what the cases leave of
+    the presets' wall (each oitbench's start, writing). A CSV without an account (schema < 6) says so."""
+    lines = []
+    per_list = {}
+    for which, preset, wall, path in runs:
+        acc = Account()
+        try:
+            _, rows = oitres.read_csv(path)
+        except oitres.ResultsError as e:
+            rows = []
+            lines.append(f"{prefix}: {preset}: {e}")
+        for r in rows:
+            acc.add(r)
+        total_wall, total_acc, names = per_list.setdefault(which, [0.0, Account(), []])
+        per_list[which][0] = total_wall + wall
+        names.append(preset)
+        for r in rows:
+            total_acc.add(r)
+        what = f"{acc.cases} cases: {shares_text(acc)}" if acc.cases else "no time account in its rows"
+        lines.append(f"{prefix}: {preset} ({which}): {minutes(wall)}; {what}")
+    for which in ("default", "opt-in"):
+        if which not in per_list:
+            continue
+        wall, acc, names = per_list[which]
+        line = f"{prefix}: the {which} list: {len(names)} preset(s), {minutes(wall)}"
+        if acc.cases:
+            line += (f"; its {acc.cases} cases {acc.wall:.0f} s: {shares_text(acc)}; the rest of its wall time "
+                     f"{max(0.0, wall - acc.wall):.0f} s (each oitbench's start and writing)")
+        lines.append(line)
+    return lines
