@@ -119,14 +119,12 @@ class PeelCase final : public OitCase {
 
     glm::mat4 vp = fx_.view_projection();
 
-    // The fragments, once: the exact reference and the model work on these. With the opaque
-    // effect: every transparent fragment, hidden by the CPU against the opaque pass's depth.
+    // The fragments, once per run and view (visible_capture.hpp: shared with the run's other cases that see
+    // them): the exact reference and the model work on these. With the opaque effect: every transparent
+    // fragment, hidden by the CPU against the opaque pass's depth.
     {
       const auto referencing = ctx.phase(Phase::Reference);
-      VisibleFragments seen = capture_visible_fragments(fx_, vp, p, ctx);
-      backdrop_ = std::move(seen.backdrop);
-      host_ = std::move(seen.host);
-      hidden_ = seen.hidden;
+      ref_ = reference_view(fx_, vp, p, ctx);
     }
 
     Defines d = fx_.geometry_defines();
@@ -263,20 +261,21 @@ class PeelCase final : public OitCase {
     std::vector<float> rgb(rgba.size() / 4 * 3);
     for (size_t i = 0; i < rgba.size() / 4; ++i)
       for (int k = 0; k < 3; ++k) rgb[i * 3 + k] = rgba[i * 4 + k];
-    ListStats stats = list_stats(host_);
+    const HostLists& host = ref_->host;
+    const ListStats& stats = ref_->stats;
+    const std::vector<double>& ref = ref_->composite;
     auto referencing = PhaseClock::Scope(phases_, Phase::Reference);
-    auto ref = composite_reference(host_, backdrop_);
     PeelSettings s = settings_;
     s.iterations = iterations_;
-    auto model = peel_model(host_, backdrop_, s);
+    auto model = peel_model(host, ref_->backdrop, s);
     referencing.end();
     ApproxError err = approx_error(rgb, ref);
     size_t deepest = 0;  // the most layers in one pixel
-    for (size_t px = 0; px < host_.heads.size(); ++px)
-      deepest = std::max(deepest, peel_layers(host_, px, settings_.depth_only).size());
+    for (size_t px = 0; px < host.heads.size(); ++px)
+      deepest = std::max(deepest, peel_layers(host, px, settings_.depth_only).size());
     size_t per = settings_.dual ? 2 : 1;
     m["polygons"] = std::to_string(fx_.mesh().polygons());
-    if (fx_.opaque()) m["hidden_fragments"] = std::to_string(hidden_);
+    if (fx_.opaque()) m["hidden_fragments"] = std::to_string(ref_->hidden);
     m["total_fragments"] = std::to_string(stats.total_fragments);
     m["peak_depth"] = std::to_string(stats.peak_depth);
     m["mean_depth"] = fmt(stats.mean_depth);
@@ -311,7 +310,7 @@ class PeelCase final : public OitCase {
 
     std::vector<std::string> problems;
     merge_shadow_check(m, problems, fx_.validate_shadow());
-    if (!host_.error.empty()) problems.push_back(host_.error);
+    if (!host.error.empty()) problems.push_back(host.error);
     if (!stats.error.empty()) problems.push_back(stats.error);
     if (nonfinite) problems.push_back(std::to_string(nonfinite) + " non-finite channel value(s) (NaN or Inf)");
     if (model_off)
@@ -364,9 +363,7 @@ class PeelCase final : public OitCase {
   const SceneDesc& scene_;
   RenderTarget out_;
   FullscreenTriangle quad_;
-  Backdrop backdrop_;
-  size_t hidden_ = 0;
-  HostLists host_;
+  std::shared_ptr<const ReferenceView> ref_;  // the view's fragments, backdrop, statistics and exact composite
   PeelSettings settings_;
   unsigned max_iterations_ = 0, iterations_ = 0, passes_ = 0;
   bool complete_ = false;
