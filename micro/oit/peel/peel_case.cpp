@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/parallel_rows.hpp"
 #include "gl/render_target.hpp"
 #include "oit/case_support.hpp"
 #include "oit/peel/peel.hpp"
@@ -77,7 +78,8 @@ std::vector<PeelLayer> peel_layers(const HostLists& l, size_t pixel, bool depth_
 std::vector<double> peel_model(const HostLists& l, const Backdrop& backdrop, const PeelSettings& s) {
   size_t pixels = l.heads.size();
   std::vector<double> out(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p) {
+  // Pixels are independent: their rows on every core (outside the timed regions).
+  parallel_rows(pixels, static_cast<size_t>(std::max(1, l.width)), 0, [&](unsigned, size_t p) {
     std::vector<PeelLayer> layers = peel_layers(l, p, s.depth_only);
     size_t per = s.dual ? 2 : 1;
     if (layers.size() > per * s.iterations) {  // stopped early: the first (DDP: and last) iterations' layers
@@ -96,7 +98,7 @@ std::vector<double> peel_model(const HostLists& l, const Backdrop& backdrop, con
     }
     c += t * glm::dvec3(backdrop.at(p));
     for (int k = 0; k < 3; ++k) out[p * 3 + k] = c[k];
-  }
+  });
   return out;
 }
 
