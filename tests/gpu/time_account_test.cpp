@@ -189,8 +189,9 @@ TEST(TimeAccount, EveryModelCheckedCaseSharesTheReferenceAndKeepsEveryCheck) {
       continue;
     }
     EXPECT_EQ(row.at("status"), "ok") << what << ": " << row.at("reason");
-    if (row.at("technique") == "MLAB")  // the approximate cases report against the scene's planes too
+    if (row.at("technique") == "MLAB") {  // the approximate cases report against the scene's planes too
       EXPECT_FALSE(row.at("truth_rmse").empty()) << what << ": the geometric reference (planes are analytic)";
+    }
     auto it = alone.find(row.at("technique"));
     if (it == alone.end()) continue;
     for (const char* col : {"rmse", "model_rmse", "total_fragments"})
