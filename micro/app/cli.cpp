@@ -37,6 +37,7 @@ struct CliState {
   bool info_drivers = false;
   RunCommand run;
   double target_ci_pct = 0;
+  double warmup_settle_pct = 0;
   bool no_interleave = false, no_progress = false, no_program_cache = false;
   std::string shard;              // --shard I/N or auto
   std::string memory_limit;       // --memory-limit SIZE as given
@@ -174,6 +175,7 @@ int execute_info(const CLI::App&, CliState& s) {
 void declare_sampling(CLI::App& run, CliState& s) {
   RunOptions& o = s.run.options;
   s.target_ci_pct = o.sampling.target_ci * 100;
+  s.warmup_settle_pct = o.sampling.warmup_settle * 100;
   o.sampling.max_case_s = 10;  // a 2-core machine's reference runs: 10 timed seconds per case at most
   const char* sizing = "Samples and stopping";
   run.add_option("--target-ci", s.target_ci_pct,
@@ -191,6 +193,11 @@ void declare_sampling(CLI::App& run, CliState& s) {
   run.add_option("--min-sample-ms", o.sampling.min_sample_ms,
                  "A sample runs the case's repetition often enough to last this long (default 20; 0: once)")
       ->check(number({0, 60000, false, false, false, "ms"}))
+      ->group(sizing);
+  run.add_option("--warmup-settle", s.warmup_settle_pct,
+                 "The last warm-up repetition counts as the first sample where the first timed one shows it had "
+                 "settled: at most this % slower than it (default 10; 0: never)")
+      ->check(number({0, 1e6, false, false, false, "%"}))
       ->group(sizing);
   run.add_option("--max-sample-ms", o.sampling.max_sample_ms,
                  "A repetition longer than this runs fewer units of scalable work (occupancy's draws), times "
@@ -330,6 +337,7 @@ int execute_run(const CLI::App& run, CliState& s) {
   o.reps_given = run.count("--reps") > 0;
   o.sampling.adaptive = true;  // unless --reps, a preset entry's reps or --quick fix the count
   o.sampling.target_ci = s.target_ci_pct / 100;
+  o.sampling.warmup_settle = s.warmup_settle_pct / 100;
   o.warmup_given = run.count("--warmup") > 0;
   o.interleave = !s.no_interleave;
   o.program_cache = !s.no_program_cache;

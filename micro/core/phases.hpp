@@ -14,7 +14,7 @@ namespace oitbench {
 enum class Phase {
   Scene,      // preparing the case apart from compiling: scene build and upload, buffers, targets
   Compile,    // compiling and linking its programs (CaseContext::build), program-cache loads included
-  Pool,       // sizing its storage: the capture that sizes a fragment pool and its overflow re-renders
+  Pool,       // sizing its storage: the count pass that sizes a fragment pool (or a capture and its re-renders)
   Warmup,     // untimed repetitions, and rounds the sample-size check took as warm-up
   Samples,    // the timed repetitions
   Readback,   // reading the result back for validation

@@ -49,7 +49,7 @@ Row case_columns(const RowSettings& s, const CaseRecord& c) {
   row["width"] = std::to_string(s.res.width);
   row["height"] = std::to_string(s.res.height);
   row["reps"] = std::to_string(c.cpu.count("total") ? c.cpu.at("total").size() : static_cast<size_t>(s.reps));
-  row["warmup"] = std::to_string(s.warmup);
+  row["warmup"] = std::to_string(s.warmup - c.warmup_kept);  // the repetitions that were warm-up
   row["timestamp_utc"] = utc_now();
   std::string names;
   for (const auto& [k, v] : c.params.used_values())

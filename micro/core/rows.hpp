@@ -39,6 +39,7 @@ struct CaseRecord {
   const CaseRecord* baseline_record = nullptr;  // that case's record, run in the same group (null: no speedup)
   PhaseTimes phases;                            // where its wall time went (core/phases.hpp)
   bool accounted = false;                       // the runner kept that account (case_wall_s and phase_*_s)
+  int warmup_kept = 0;                          // warm-up repetitions that had settled, kept as samples
 
   void fail(Status s, const std::string& why);  // the first failure is the one kept
   // Appends to what the rows' reason will say: the note of an ok case, the reason of another.

@@ -310,6 +310,17 @@ class Runner {
     std::vector<bool> done;                          // a case whose interval reached the target stops
     StopReason why = StopReason::Continue;
     PhaseTimes overhead;  // the runner's own work for the group, shared among its cases at the end
+    // One repetition as it ran: its passes and totals per nominal repetition, the size it ran at (runs,
+    // scale) and the seconds it took. Each case's last warm-up, and its repetition of the round being
+    // checked (its rows wait until the sizes are confirmed).
+    struct Repetition {
+      std::vector<PassSample> samples;
+      double total = 0, scale = 0, seconds = 0;
+      int runs = 0;
+      bool ran = false;
+    };
+    std::vector<Repetition> last_warm, round;
+    int rep_offset = 0;  // 1 where the last warm-up round was kept as the first timed one (raw rows' rep)
     GroupRun(const Planned& plan, const GroupPlan& g, RowSettings s, bool queries, bool sync)
         : p(plan),
           group(g),
@@ -319,7 +330,9 @@ class Runner {
           last_ms(live.size(), 0),
           warm_scale(live.size(), 1.0),
           scale(live.size(), 1.0),
-          done(live.size(), false) {}
+          done(live.size(), false),
+          last_warm(live.size()),
+          round(live.size()) {}
   };
 
   // Keeps the run's clock off a group's records once the group is gone.
@@ -378,10 +391,15 @@ class Runner {
         try {
           std::vector<PassSample> samples;
           double total = 0;
-          const Charging charging(clock_, c.record.phases, Phase::Warmup, g.overhead);
-          if (!run_sample(c, g.timer, 1, g.warm_scale[i], samples, total)) continue;
+          const double before = c.record.phases[Phase::Warmup];
+          {
+            const Charging charging(clock_, c.record.phases, Phase::Warmup, g.overhead);
+            if (!run_sample(c, g.timer, 1, g.warm_scale[i], samples, total)) continue;
+          }
           if (r == -p.warmup) c.record.warmup_ms = total / g.warm_scale[i];
           g.last_ms[i] = total;
+          g.last_warm[i] = {
+              std::move(samples), total, g.warm_scale[i], c.record.phases[Phase::Warmup] - before, 1, true};
         } catch (const std::exception& e) {
           c.record.fail(Status::Error, std::string("run: ") + e.what());
         }
@@ -427,7 +445,6 @@ class Runner {
     auto timed_start = Clock::now();  // restarted when a round is taken as warm-up
     int size_checks = 0;
     bool checked_size = false;
-    std::vector<Row> first_round_raw;  // a checked round's raw rows wait until its sizes are confirmed
     for (int r = 0; !signals_.stopped(); ++r) {
       std::vector<std::vector<double>> totals(live.size());
       bool any_active = false;
@@ -441,9 +458,11 @@ class Runner {
       if (g.why != StopReason::Continue) break;
       std::vector<double> sampled(live.size());  // each case's timed seconds before this round
       for (size_t i = 0; i < live.size(); ++i) sampled[i] = live[i].record.phases[Phase::Samples];
-      timed_round(g, r, checked_size ? nullptr : &first_round_raw);
+      for (auto& rep : g.round) rep.ran = false;
+      timed_round(g, r, !checked_size);
       if (!checked_size) {
         const bool resized = check_sizes(g);
+        const bool first_check = size_checks == 0;
         checked_size = !resized || ++size_checks >= kMaxSizeChecks;
         if (resized) {
           for (size_t i = 0; i < live.size(); ++i) {  // the round was warm-up, in the account too
@@ -456,11 +475,11 @@ class Runner {
             c.record.gpu.clear();
           }
           g.done.assign(live.size(), false);
-          first_round_raw.clear();
           timed_start = Clock::now();  // a round taken as warm-up is not timed work
           r = -1;                      // the next round is the first timed one again
-        } else if (raw_writer_) {
-          write(*raw_writer_, first_round_raw);
+        } else {
+          if (first_check) keep_settled_warmup(g);
+          write_checked_round(g, r);
         }
       }
       watchdog_->heartbeat();
@@ -468,9 +487,9 @@ class Runner {
     }
   }
 
-  // One timed round over the group's running cases; raw rows go to the file, or to `held` while the
-  // round's sizes are not confirmed.
-  void timed_round(GroupRun& g, int r, std::vector<Row>* held) {
+  // One timed round over the group's running cases; raw rows go to the file, or, while the round's sizes
+  // are not confirmed (`checking`), wait in g.round with the repetitions (write_checked_round).
+  void timed_round(GroupRun& g, int r, bool checking) {
     for (size_t i = 0; i < g.live.size(); ++i) {
       auto& c = g.live[i];
       if (!c.active() || g.done[i] || signals_.stopped()) continue;
@@ -479,21 +498,78 @@ class Runner {
       try {
         std::vector<PassSample> samples;
         double total = 0;
+        const double before = rec.phases[Phase::Samples];
         {
           const Charging charging(clock_, rec.phases, Phase::Samples, g.overhead);
           if (!run_sample(c, g.timer, rec.sample_runs, g.scale[i], samples, total)) continue;
         }
         double gpu_total = rec.add_repetition(samples, total);
-        if (raw_writer_) {
-          auto rows = raw_rows(g.settings, rec, r, samples, total, gpu_total);
-          if (held)
-            held->insert(held->end(), rows.begin(), rows.end());
-          else
-            write(*raw_writer_, rows);
-        }
+        if (checking)
+          g.round[i] = {std::move(samples), total, g.scale[i], rec.phases[Phase::Samples] - before,
+                        rec.sample_runs,    true};
+        else if (raw_writer_)
+          write(*raw_writer_, raw_rows(g.settings, rec, r + g.rep_offset, samples, total, gpu_total));
       } catch (const std::exception& e) {
         rec.fail(Status::Error, std::string("run: ") + e.what());
       }
+    }
+  }
+
+  // The warm-up ends when timings settle, not after a fixed count: where the first timed round shows that
+  // every running case's last warm-up repetition had settled (it ran at the size of the samples and took
+  // at most --warmup-settle (10 %) longer than the case's first timed repetition: warmup_settled, on the
+  // CPU clock and, where it is primary, the GPU's), the group's last warm-up round counts as its first
+  // timed round. All cases or none, so paired rounds stay paired and the raw file's rounds stay rounds. A
+  // warm-up that held the JIT (llvmpipe compiles at the first draw) or another first-time cost stays one.
+  void keep_settled_warmup(GroupRun& g) {
+    const double tolerance = g.p.policy.warmup_settle;
+    if (!(tolerance > 0)) return;
+    auto gpu_total = [](const std::vector<PassSample>& samples) {
+      double t = samples.empty() ? -1 : 0;
+      for (const auto& s : samples) t = (t < 0 || s.gpu_ms < 0) ? -1 : t + s.gpu_ms;
+      return t;
+    };
+    bool any = false;
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      if (!g.live[i].active()) continue;
+      const auto &w = g.last_warm[i], &t = g.round[i];
+      if (!w.ran || !t.ran || w.runs != t.runs || w.scale != t.scale || !warmup_settled(w.total, t.total, tolerance))
+        return;
+      if (use_gpu_timer_ && !warmup_settled(gpu_total(w.samples), gpu_total(t.samples), tolerance)) return;
+      any = true;
+    }
+    if (!any) return;
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      auto& rec = g.live[i].record;
+      if (!g.live[i].active()) continue;
+      const auto &w = g.last_warm[i], &t = g.round[i];
+      rec.cpu.clear();
+      rec.gpu.clear();
+      rec.add_repetition(w.samples, w.total);
+      rec.add_repetition(t.samples, t.total);
+      rec.phases[Phase::Warmup] -= w.seconds;  // its time was a sample's, in the account too
+      rec.phases[Phase::Samples] += w.seconds;
+      rec.warmup_kept = 1;
+    }
+    g.rep_offset = 1;
+  }
+
+  // The raw rows of a checked round whose sizes stood (and of the warm-up kept before it).
+  void write_checked_round(GroupRun& g, int r) {
+    if (!raw_writer_) return;
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      const auto& rec = g.live[i].record;
+      const auto &w = g.last_warm[i], &t = g.round[i];
+      if (!t.ran) continue;
+      std::vector<Row> rows;
+      if (rec.warmup_kept) {
+        rows = raw_rows(g.settings, rec, r, w.samples, w.total, rec.gpu.at("total").at(0));
+        auto more = raw_rows(g.settings, rec, r + 1, t.samples, t.total, rec.gpu.at("total").at(1));
+        rows.insert(rows.end(), more.begin(), more.end());
+      } else {
+        rows = raw_rows(g.settings, rec, r, t.samples, t.total, rec.gpu.at("total").back());
+      }
+      write(*raw_writer_, rows);
     }
   }
 
@@ -687,8 +763,9 @@ class Runner {
                                std::to_string(p.policy.max_reps), "--max-case-s", fmt_number(p.policy.max_case_s)});
     else
       args.insert(args.end(), {"--reps", std::to_string(p.reps)});
-    args.insert(args.end(), {"--min-sample-ms", fmt_number(p.policy.min_sample_ms), "--max-sample-ms",
-                             fmt_number(p.policy.max_sample_ms)});
+    args.insert(args.end(),
+                {"--min-sample-ms", fmt_number(p.policy.min_sample_ms), "--max-sample-ms",
+                 fmt_number(p.policy.max_sample_ms), "--warmup-settle", fmt_number(p.policy.warmup_settle * 100)});
     if (!opt_.preset_name.empty()) args.insert(args.end(), {"--preset-name", opt_.preset_name});
     args.insert(args.end(), {"--run-id", run_id_});
     for (const auto& [k, v] : opt_.tags) args.insert(args.end(), {"--tag", k + "=" + v});

@@ -74,6 +74,10 @@ int units_per_run(double rep_ms, int nominal, double min_sample_ms, double max_s
   return std::clamp(units, 1, nominal);
 }
 
+bool warmup_settled(double warm_ms, double first_ms, double tolerance) {
+  return warm_ms > 0 && first_ms > 0 && warm_ms <= first_ms * (1.0 + tolerance);
+}
+
 StopReason stop_group(const SamplingPolicy& p, const std::vector<std::vector<double>>& samples, double spent_s) {
   size_t reps = 0;
   for (const auto& s : samples) reps = std::max(reps, s.size());

@@ -19,6 +19,10 @@ int min_samples_for_interval(double confidence = 0.95);
 // The interval's larger distance from the median, relative to the median (0.03: within +-3 %).
 double relative_half_width(const Interval& ci, double median);
 
+// How much slower than the first timed repetition a warm-up repetition may be and still count as a sample
+// (warmup_settled below; --warmup-settle).
+inline constexpr double kSettledTolerance = 0.10;
+
 struct SamplingPolicy {
   bool adaptive = false;       // false: exactly `reps` repetitions (--reps N)
   int reps = 5;                // the fixed count
@@ -27,7 +31,8 @@ struct SamplingPolicy {
   double max_case_s = 30;      // --max-case-s: timed seconds per case (a group of n cases gets n times this)
   double min_sample_ms = 20;   // --min-sample-ms: a sample runs the case's repetition this long at least
   double max_sample_ms = 500;  // --max-sample-ms: above this a case with scalable work runs less of it (0: never)
-  int min_reps() const;        // adaptive: min_samples_for_interval(), at most max_reps
+  double warmup_settle = kSettledTolerance;  // --warmup-settle: keep a settled warm-up as a sample (0: never)
+  int min_reps() const;                      // adaptive: min_samples_for_interval(), at most max_reps
 };
 
 // Runs of the case's repetition in one sample, so that it lasts at least min_sample_ms (1 when one run
@@ -36,6 +41,13 @@ int runs_per_sample(double rep_ms, double min_sample_ms, int max_runs = 1000);
 // Units of work (draws) in one run of a case whose repetition is `nominal` units: fewer where a whole
 // repetition would take longer than max_sample_ms, never under one unit nor below what min_sample_ms needs.
 int units_per_run(double rep_ms, int nominal, double min_sample_ms, double max_sample_ms);
+
+// Whether a warm-up repetition had already settled, so that it can count as the first sample instead of
+// being thrown away (the warm-up ends when timings settle, not after a fixed count): the first timed
+// repetition, run at the same size, is not faster than it by more than `tolerance` (0.10: the warm-up
+// took at most 10 % longer). A repetition that held the JIT or another first-time cost never passes.
+// `warm_ms`, `first_ms`: their totals on the clock the statistics use.
+bool warmup_settled(double warm_ms, double first_ms, double tolerance = kSettledTolerance);
 
 // Whether an interleaved group of cases has enough repetitions. `samples[i]` is case i's per-repetition
 // times (of the statistic the stopping rule watches: the total); `spent_s` the timed seconds so far.

@@ -109,7 +109,10 @@ std::vector<ColumnSpec> timing_columns() {
        "timed repetitions the case got: the fixed count (--reps, a preset's reps), or where the stopping rule "
        "stopped (see stop)",
        "case"},
-      {"warmup", T::Integer, "", "untimed repetitions before them", "case"},
+      {"warmup", T::Integer, "",
+       "untimed repetitions before them: --warmup (a preset's warmup), one fewer where the last had settled and "
+       "counted as the first timed repetition",
+       "case"},
       {"median_ms", T::Number, "ms", "median of the primary clock over the repetitions", "timing"},
       {"mad_ms", T::Number, "ms", "median absolute deviation of the primary clock", "timing"},
       {"min_ms", T::Number, "ms", "fastest repetition", "timing"},
@@ -186,11 +189,13 @@ std::vector<ColumnSpec> phase_columns() {
        "of case_wall_s: compiling and linking programs (program-cache loads included), wherever the case did it",
        "timing"},
       {"phase_pool_s", T::Number, "s",
-       "of case_wall_s: sizing the case's storage (the capture that sizes a fragment pool, its overflow re-renders "
-       "and read-back)",
+       "of case_wall_s: sizing the case's storage (the exact techniques' count pass that sizes a fragment pool and "
+       "its read-back of the counts; with initial_pool, the capture, its overflow re-renders and read-back)",
        "timing"},
       {"phase_warmup_s", T::Number, "s",
-       "of case_wall_s: untimed repetitions, and rounds the sample-size check took as warm-up", "timing"},
+       "of case_wall_s: untimed repetitions (not a last one that settled and counted as a sample), and rounds the "
+       "sample-size check took as warm-up",
+       "timing"},
       {"phase_samples_s", T::Number, "s", "of case_wall_s: the timed repetitions", "timing"},
       {"phase_readback_s", T::Number, "s", "of case_wall_s: reading the result back for validation", "timing"},
       {"phase_reference_s", T::Number, "s", "of case_wall_s: computing the CPU or geometric reference", "timing"},

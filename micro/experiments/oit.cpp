@@ -68,8 +68,10 @@ ExactParams exact_params() {
   ParamSpec block =
       ParamSpec::choice("block", "RBS block size MAX_REGISTERS (the paper: 32)", {"4", "8", "16", "32"}, {"32"}, {"8"});
   ParamSpec pool = ParamSpec::integer(
-      "initial_pool", "first node pool in fragments (0: 4 per pixel); later frames size it from the last count", 0, 1e9,
-      {"0"});
+      "initial_pool",
+      "first node pool in fragments (0: sized by a count pass, so the first capture never overflows); later "
+      "frames size it from the last count",
+      0, 1e9, {"0"});
   ParamSpec max_frags = ParamSpec::integer(
       "max_frags", "MAX_FRAGS (0: next power of two at or above the view's peak depth)", 0, 4096, {"0"});
   ParamSpec cs_group =
@@ -196,8 +198,8 @@ class OitExperiment final : public Experiment {
         {"truncated_pixels", T::Integer, "", "pixels deeper than max_frags_used (their deepest fragments dropped)"},
         {"node_pool", T::Integer, "", "fragment slots allocated"},
         {"overflow_rerenders", T::Integer, "",
-         "captures redone because the node pool overflowed (the exact techniques: 0 where the pool started at the "
-         "size an earlier case of the run found for the same fragments)"},
+         "captures redone because the node pool overflowed (the exact techniques: 0 unless initial_pool set the "
+         "first pool; a count pass sizes it otherwise)"},
         {"bma_intervals", T::Text, "", "BMA: pixels per depth interval, TOP:COUNT;..."},
         {"node_pool_bytes", T::Integer, "bytes", "fragment storage allocated (nodes, next pointers, heads or offsets)"},
         {"node_buffers", T::Integer, "",

@@ -28,6 +28,27 @@ TEST_F(Oit, CaptureLosesNoFragmentAndOverflowRerenders) {
   EXPECT_EQ(v.metrics.at("max_frags_used"), "32");
 }
 
+// Without initial_pool a count pass sizes the pool before the first capture (exact_case.cpp: size_pool):
+// nothing overflows, the pool is the fragments and the 1/32 a steady capture keeps, and the peak depth
+// sets MAX_FRAGS as the lists' own would; BMA-AUTO captures into that pool for its calibration.
+TEST_F(Oit, ACountPassSizesThePoolSoTheFirstCaptureNeverOverflows) {
+  for (const char* technique : {"BASE-IS", "BMA-IS", "BMA-AUTO", "CPU-NATIVE"}) {
+    auto p = small("planes", "rev", technique);
+    if (std::string(technique) == "BMA-AUTO") p["bma_auto_cache"] = "off";
+    auto v = run_case("oit", p);
+    EXPECT_TRUE(v.valid) << technique << ": " << v.reason;
+    const double fragments = 24 * 64 * 64;
+    EXPECT_EQ(v.metrics.at("total_fragments"), std::to_string(24 * 64 * 64)) << technique;
+    EXPECT_EQ(v.metrics.at("overflow_rerenders"), "0") << technique;
+    EXPECT_GE(std::stod(v.metrics.at("node_pool")), fragments) << technique;
+    EXPECT_LE(std::stod(v.metrics.at("node_pool")), fragments + fragments / 32 + 1) << technique;
+    EXPECT_EQ(v.metrics.at("peak_depth"), "24") << technique;
+    if (std::string(technique) != "CPU-NATIVE") {
+      EXPECT_EQ(v.metrics.at("max_frags_used"), "32") << technique;
+    }
+  }
+}
+
 TEST_F(Oit, AnOversizedPoolShrinksBeforeTheNextFrameNotAfterIt) {
   auto p = small("planes", "rev", "BMA-RBS-L");
   p["initial_pool"] = "1000000";  // ten times what 24 planes at 64x64 need

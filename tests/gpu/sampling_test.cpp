@@ -50,6 +50,44 @@ TEST(Sampling, AShortRepetitionRunsSeveralTimesPerSample) {
   EXPECT_TRUE(rows[0]["ci_lo_ms"].empty());
 }
 
+// The warm-up ends when timings settle (runner.cpp: keep_settled_warmup): a last warm-up repetition the
+// first timed one shows had settled counts as the first sample, so a fixed count still gets exactly its
+// repetitions, one of them the warm-up's, and the raw file one row per sample, rounds numbered from 0.
+// --warmup-settle 1000000 keeps any warm-up after the first (whose JIT it could still hold); 0 keeps none.
+TEST(Sampling, ASettledWarmUpCountsAsTheFirstSample) {
+  for (const char* settle : {"1000000", "0"}) {
+    SCOPED_TRACE(settle);
+    std::string raw;
+    auto rows = run_rows(
+        std::string("settle-") + settle,
+        {"oit", "--set", "scene=planes", "--set", "view=fwd", "--set", "technique=BASE-IS,BASE-IMS", "--resolution",
+         "32x32", "--reps", "4", "--warmup", "2", "--min-sample-ms", "0", "--warmup-settle", settle},
+        &raw);
+    const bool kept = std::string(settle) != "0";
+    size_t totals = 0;
+    for (auto& row : rows) {
+      if (row["pass"] != "total") continue;
+      ++totals;
+      EXPECT_EQ(row["status"], "ok") << row["reason"];
+      EXPECT_EQ(row["reps"], "4");
+      EXPECT_EQ(row["samples"], "4");
+      EXPECT_EQ(row["warmup"], kept ? "1" : "2");
+      EXPECT_GT(num(row, "phase_samples_s"), 0);
+      EXPECT_GT(num(row, "phase_warmup_s"), 0);
+    }
+    EXPECT_EQ(totals, 2u);
+    std::map<std::string, std::set<std::string>> reps;  // technique -> the raw total rows' rep
+    size_t raw_totals = 0;
+    for (auto& row : read_csv_rows(raw))
+      if (row["pass"] == "total") {
+        ++raw_totals;
+        reps[row["technique"]].insert(row["rep"]);
+      }
+    EXPECT_EQ(raw_totals, 8u);
+    for (const auto& [technique, r] : reps) EXPECT_EQ(r, (std::set<std::string>{"0", "1", "2", "3"})) << technique;
+  }
+}
+
 TEST(Sampling, ScalableWorkRunsFewerUnitsScaledBack) {
   // --max-sample-ms below one draw: one draw per run, times scaled to the 16 draws asked for.
   std::string raw;

@@ -33,6 +33,18 @@ TEST(Sampling, MedianIntervalUsesBinomialOrderStatistics) {
   EXPECT_NEAR(relative_half_width(ci, 50.5), 10.5 / 50.5, 1e-12);
 }
 
+TEST(Sampling, AWarmUpHasSettledWhenTheFirstSampleIsNotMuchFaster) {
+  EXPECT_TRUE(warmup_settled(100, 100));
+  EXPECT_TRUE(warmup_settled(90, 100));     // faster than the sample: nothing left to warm
+  EXPECT_TRUE(warmup_settled(110, 100));    // within 10 %
+  EXPECT_FALSE(warmup_settled(111, 100));   // 11 % slower: the sample says the warm-up was still warming
+  EXPECT_FALSE(warmup_settled(5000, 100));  // the JIT of the first draw
+  EXPECT_TRUE(warmup_settled(120, 100, 0.25));
+  EXPECT_FALSE(warmup_settled(0, 100));  // nothing measured
+  EXPECT_FALSE(warmup_settled(100, 0));
+  EXPECT_FALSE(warmup_settled(-1, 100));  // no GPU query result
+}
+
 TEST(Sampling, SampleSizeFromTheWarmUp) {
   EXPECT_EQ(runs_per_sample(2.0, 20.0), 10);          // 2 ms repetitions: 10 per 20 ms sample
   EXPECT_EQ(runs_per_sample(3.0, 20.0), 7);           // rounded up: the sample lasts at least 20 ms

@@ -216,6 +216,20 @@ MemoryNeed fragment_memory(CaptureStorage kind, FragFormat format, bool with_cou
   return need;
 }
 
+void require_fragment_budget(CaptureStorage kind, const CaseContext& ctx, bool with_counts, FragFormat format,
+                             const FragmentBudget& budget) {
+  if (budget.expected == 0) return;
+  const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
+  require_memory(
+      combined(
+          fragment_memory(kind, format, with_counts, budget.expected + budget.expected / 8, pixels, budget.host_copies),
+          budget.held),
+      ctx.memory(), "~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives):");
+  if (budget.expected >= kListEnd)
+    throw Unsupported("~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives): " +
+                      "the capture indexes fragments with 32 bits (at most " + format_count(kListEnd - 1) + ")");
+}
+
 std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, const CaseContext& ctx, size_t initial_pool,
                                                        bool with_counts, FragFormat format, FragmentBudget budget) {
   const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
@@ -225,15 +239,7 @@ std::unique_ptr<FragmentStorage> make_fragment_storage(CaptureStorage kind, cons
                    limits, "a pool of " + format_count(pool) + " fragments");
   };
   // The scene's estimate first: nothing is allocated or drawn for a case that cannot be held.
-  if (budget.expected > 0) {
-    require_memory(combined(fragment_memory(kind, format, with_counts, budget.expected + budget.expected / 8, pixels,
-                                            budget.host_copies),
-                            budget.held),
-                   limits, "~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives):");
-    if (budget.expected >= kListEnd)
-      throw Unsupported("~" + format_count(budget.expected) + " fragments (estimated from the scene's primitives): " +
-                        "the capture indexes fragments with 32 bits (at most " + format_count(kListEnd - 1) + ")");
-  }
+  require_fragment_budget(kind, ctx, with_counts, format, budget);
   guard(initial_pool);
   std::unique_ptr<FragmentStorage> storage;
   if (kind == CaptureStorage::PPPA)

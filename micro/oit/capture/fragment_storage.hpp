@@ -186,6 +186,12 @@ struct FragmentBudget {
   MemoryNeed held = {};  // what the case holds beside the fragments (a splat scene's splats), in every check
 };
 
+// The check make_fragment_storage makes first: the expected fragments (and the 1/8 a pool grows by)
+// against the case's memory, and against the 32-bit fragment index. For a case that draws before it
+// allocates (a count pass that sizes its pool): nothing is drawn for a case that cannot be held.
+void require_fragment_budget(CaptureStorage kind, const CaseContext& ctx, bool with_counts, FragFormat format,
+                             const FragmentBudget& budget);
+
 // `with_counts`: PPLL also counts each pixel's fragments (BMA); PPPA always does.
 // Throws Unsupported, naming the estimate and the limit, when the expected fragments (or the initial
 // pool) would not fit the case's memory; later growth of the pool is checked the same way.

@@ -18,6 +18,7 @@
 #include "core/stats.hpp"
 #include "gl/render_target.hpp"
 #include "oit/approx/approx.hpp"
+#include "oit/capture/fragment_counts.hpp"
 #include "oit/capture/fragment_storage.hpp"
 #include "oit/capture/packed_arrays.hpp"
 #include "oit/case_support.hpp"
@@ -456,65 +457,96 @@ class ExactCase final : public OitCase {
     std::vector<unsigned> depths;  // the distinct non-zero pixel depths, ascending
   };
 
-  // Makes the fragment storage and sizes its pool: one capture (with its overflow re-renders) and its
-  // read-back, before anything is compiled. The run's cases that capture the same fragments (the same
-  // size, the same parameters but the resolve's: pool_key) share what it found: only the first pays the
-  // capture, and the others' pools start at the size it needed (their captures then overflow no more, so
-  // their overflow_rerenders is 0). A pool set by initial_pool, and BMA-AUTO, whose calibration resolves
-  // the captured lists, always capture here. Validation reads their own capture back, as before.
+  // Makes the fragment storage and sizes its pool before anything else is compiled: a count pass of the
+  // geometry (FragmentCounter: each pixel's fragments, stored nowhere) and a read-back of 4 bytes a pixel
+  // give the exact pool, the peak depth that sets MAX_FRAGS and the depths BMA's intervals need, so the
+  // first capture never overflows (no re-render, no read-back of the fragments). The run's cases that
+  // capture the same fragments (the same size, the same parameters but the resolve's and the storage's:
+  // pool_key) share the counts: only the first pays the count pass. BMA-AUTO, whose calibration resolves
+  // the captured lists, captures once here into the pool the counts sized. A pool set by initial_pool is
+  // sized by a capture, as a frame would be: its overflow re-renders are what such a case measures.
+  // Validation reads each case's own capture back, as before.
   std::shared_ptr<const PoolSizing> size_pool(const ParamSet& p, const CaseContext& ctx) {
     const auto sizing_phase = ctx.phase(Phase::Pool);
-    const size_t pixels = static_cast<size_t>(ctx.width()) * ctx.height();
     const long long init = p.get_int("initial_pool");
+    const CaptureStorage kind = parse_capture_storage(p.get("capture"));
     // The opaque effect's validation holds three read-backs at once: the capture, the unoccluded
     // capture and its visible fragments.
-    auto make_storage = [&](size_t pool) {
-      lists_ = make_fragment_storage(parse_capture_storage(p.get("capture")), ctx, pool, bma_, format_,
-                                     capture_budget(passes_.mesh(), view_proj_, ctx, passes_.opaque() ? 3 : 1));
+    const int host_copies = passes_.opaque() ? 3 : 1;
+    auto make_storage = [&](size_t pool, const FragmentBudget& budget) {
+      lists_ = make_fragment_storage(kind, ctx, pool, bma_, format_, budget);
       build_capture();
     };
-    auto measure = [&] {
-      make_storage(init > 0 ? static_cast<size_t>(init) : pixels * 4);
+    if (init > 0) {
+      make_storage(static_cast<size_t>(init), capture_budget(passes_.mesh(), view_proj_, ctx, host_copies));
       passes_.draw_opaque();
       overflow_rerenders_ += capture();
       const ListDepths d = list_depths(lists_->read_back());
-      auto s = std::make_shared<PoolSizing>();
-      s->fragments = lists_->fragments();
-      s->peak_depth = d.peak_depth;
-      std::vector<bool> seen(d.peak_depth + 1, false);
-      for (unsigned depth : d.depth) seen[depth] = true;
-      for (unsigned depth = 1; depth <= d.peak_depth; ++depth)
-        if (seen[depth]) s->depths.push_back(depth);
-      return std::shared_ptr<const PoolSizing>(std::move(s));
+      FragmentCounts c;
+      c.depth = d.depth;
+      c.peak_depth = d.peak_depth;
+      return std::make_shared<const PoolSizing>(PoolSizing{lists_->fragments(), d.peak_depth, c.depths()});
+    }
+    auto count = [&] {
+      // The scene's estimate first: nothing is drawn for a case that cannot be held.
+      require_fragment_budget(kind, ctx, bma_, format_, capture_budget(passes_.mesh(), view_proj_, ctx, host_copies));
+      const FragmentCounts c = count_fragments(ctx);
+      if (c.total_fragments >= kListEnd)
+        throw Unsupported(format_count(c.total_fragments) + " fragments (counted): the capture indexes fragments " +
+                          "with 32 bits (at most " + format_count(kListEnd - 1) + ")");
+      return std::make_shared<const PoolSizing>(PoolSizing{c.total_fragments, c.peak_depth, c.depths()});
     };
-    if (init > 0 || auto_ || !ctx.shared()) return measure();
-    bool measured = false;
-    auto s = ctx.shared()->get<PoolSizing>(
-        pool_key(p, ctx),
-        [&] {
-          measured = true;
-          return measure();
-        },
-        kSharedPoolSizings);
-    if (!measured) make_storage(std::max(pixels * 4, s->fragments + s->fragments / 32 + 1));
+    const std::shared_ptr<const PoolSizing> s =
+        ctx.shared() ? ctx.shared()->get<PoolSizing>(pool_key(p, ctx), count, kSharedPoolSizings) : count();
+    // The counts are exact: the pool is checked against the memory as it is (make_fragment_storage's
+    // guard), with the 1/32 a steady capture keeps to spare.
+    make_storage(s->fragments + s->fragments / 32 + 1,
+                 FragmentBudget{0, host_copies, scene_held_memory(passes_.mesh())});
+    if (auto_) {
+      passes_.draw_opaque();
+      overflow_rerenders_ += capture();
+    }
     return s;
   }
 
-  // Everything the captured fragments depend on: the size, whether the pool keeps counts, and every
-  // parameter but those only the resolve reads (a parameter added later is in the key until listed here).
+  // The count pass: the capture's shaders as PPPA's count program, under the capture's state (the
+  // opaque pass drawn first for its depth test, no culling, no colour).
+  FragmentCounts count_fragments(const CaseContext& ctx) {
+    FragmentCounter counter(ctx, capture_stages(), format_, passes_.geometry_defines());
+    glProgramUniformMatrix4fv(counter.program(), glGetUniformLocation(counter.program(), "viewProj"), 1, GL_FALSE,
+                              &view_proj_[0][0]);
+    passes_.draw_opaque();
+    target_.bind();
+    passes_.begin_geometry();
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    passes_.bind_geometry(counter.program());
+    FragmentCounts c = counter.count([&] { passes_.transparent().draw(); });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    passes_.end_geometry();
+    return c;
+  }
+
+  static std::vector<ShaderStage> capture_stages() {
+    return {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}};
+  }
+
+  // Everything the captured fragments depend on: the size and every parameter but those only the resolve
+  // or the storage reads (a parameter added later is in the key until listed here). The counts do not
+  // depend on the layout (capture) nor on whether it keeps counts (BMA): both store every fragment that
+  // reaches store_fragment(), which is what the count pass counts.
   std::string pool_key(const ParamSet& p, const CaseContext& ctx) const {
-    constexpr std::array<std::string_view, 8> kResolveOnly = {
-        "technique", "block", "block_sort", "cs_group", "max_frags", "order_check", "bma_auto_cache", "early_stop"};
-    std::string key = std::to_string(ctx.width()) + "x" + std::to_string(ctx.height()) + (bma_ ? " counts" : "");
+    constexpr std::array<std::string_view, 9> kNotCounted = {"technique",      "block",      "block_sort",
+                                                             "cs_group",       "max_frags",  "order_check",
+                                                             "bma_auto_cache", "early_stop", "capture"};
+    std::string key = std::to_string(ctx.width()) + "x" + std::to_string(ctx.height());
     for (const auto& [k, v] : p.values())
-      if (std::find(kResolveOnly.begin(), kResolveOnly.end(), k) == kResolveOnly.end()) key += " " + k + "=" + v;
+      if (std::find(kNotCounted.begin(), kNotCounted.end(), k) == kNotCounted.end()) key += " " + k + "=" + v;
     return key;
   }
 
   void build_capture() {
-    capture_ = build_capture_programs(
-        *lists_, ctx_, {{GL_VERTEX_SHADER, "scene/scene.vert"}, {GL_FRAGMENT_SHADER, "capture/capture.frag"}},
-        passes_.geometry_defines());
+    capture_ = build_capture_programs(*lists_, ctx_, capture_stages(), passes_.geometry_defines());
     set_view_projection(view_proj_);
   }
 
