@@ -115,7 +115,9 @@ TEST_F(Splats, GlobalSortOfAMeshIsUnsupported) {
     }
   }
   for (const auto& t : oit::techniques())
-    if (t.name == "GLOBAL-SORT" || t.name == "WINDOW-SORT") EXPECT_EQ(t.primitives, oit::TechniquePrimitives::Splats);
+    if (t.name == "GLOBAL-SORT" || t.name == "WINDOW-SORT") {
+      EXPECT_EQ(t.primitives, oit::TechniquePrimitives::Splats);
+    }
 }
 
 // 3DGS's early termination (early_stop): each ordered technique composites front to back and stops at the

@@ -141,7 +141,9 @@ TEST(Popping, ATiesSlackBoundsTheOtherOrder) {
     const double d = std::max({e.r, e.g, e.b});
     largest = std::max(largest, d);
     EXPECT_LE(d, one.tie_slack[p] + kSplatTieEffect) << "pixel " << p;  // a smaller swap is not a tie
-    if (!one.tied[p]) EXPECT_EQ(one.tie_slack[p], 0.0f);
+    if (!one.tied[p]) {
+      EXPECT_EQ(one.tie_slack[p], 0.0f);
+    }
   }
   EXPECT_GT(largest, 0.1);
 }

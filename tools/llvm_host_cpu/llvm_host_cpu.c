@@ -3,8 +3,8 @@
 // "znver3" but knows no Zen 5 (family 26: "generic"), so two hosts with the same ISA flags can get
 // different instruction scheduling. docs/drivers.md ("The host difference") shows it in use:
 //
-//   LD_PRELOAD=build/liboitbench_llvm_host_cpu.so OITBENCH_LLVM_MCPU=generic \
-//     MESA_SHADER_CACHE_DIR=/tmp/cache-generic build/oitbench run ...
+//   LD_PRELOAD=build/liboitbench_llvm_host_cpu.so OITBENCH_LLVM_MCPU=generic
+//     MESA_SHADER_CACHE_DIR=/tmp/cache-generic build/oitbench run ...   (one command line)
 //
 // (a cache folder of its own: Mesa's shader cache keys on the renderer string, not on the CPU LLVM tuned
 // for, so a shared cache would hand back the other CPU's code). Without OITBENCH_LLVM_MCPU it changes
