@@ -632,14 +632,28 @@ class Runner {
   }
 
   // The group's own work so far, shared equally among its cases (their `other`), so that the cases'
-  // wall times add up to the group's; then every case's phases into the run's account. Writing the
-  // rows is the run's, timed apart (finish_case).
+  // wall times add up to the group's; then every case's phases into the run's account. A shadow (a
+  // baseline run again to pair with this group's cases, which writes no row) shares its phases, phase by
+  // phase, among the cases that write rows, so that the rows add up to the run too. Writing the rows is
+  // the run's, timed apart (finish_case).
   void share_overhead(GroupRun& g) {
     clock_.attach(nullptr, Phase::Other);
     const double share = g.overhead.total() / static_cast<double>(std::max<size_t>(1, g.live.size()));
-    for (auto& c : g.live) {
-      c.record.phases[Phase::Other] += share;
-      account_.cases += c.record.phases;
+    PhaseTimes shadows;
+    size_t writers = 0;
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      g.live[i].record.phases[Phase::Other] += share;
+      if (g.group.shadow[i])
+        shadows += g.live[i].record.phases;
+      else
+        ++writers;
+    }
+    for (size_t i = 0; i < g.live.size(); ++i) {
+      auto& phases = g.live[i].record.phases;
+      if (writers > 0 && g.group.shadow[i]) phases = PhaseTimes{};
+      if (writers > 0 && !g.group.shadow[i])
+        for (size_t k = 0; k < kPhaseCount; ++k) phases.seconds[k] += shadows.seconds[k] / static_cast<double>(writers);
+      account_.cases += phases;
     }
   }
 
