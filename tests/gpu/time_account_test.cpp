@@ -2,6 +2,8 @@
 // case's total row has its wall time and phases, present, not negative and adding up to case_wall_s;
 // the cases' walls fit in the process's; the run's closing line gives the shares.
 #include <chrono>
+#include <filesystem>
+#include <functional>
 #include <map>
 
 #include "core/phases.hpp"
@@ -149,25 +151,22 @@ TEST(TimeAccount, ASharedPoolSizingKeepsEveryCheck) {
   EXPECT_EQ(totals, 8u);
 }
 
-// The approximate techniques' cases of a run that see the same fragments share one reference view
-// (approx_case.cpp: reference_view); each still compares its own image: a wrong result (in the key) is
-// still invalid beside valid cases of the same view, and a case's error is what it is in a run of its own.
-TEST(TimeAccount, ASharedReferenceKeepsEveryCheck) {
-  const auto dir = temp_dir("account-reference");
-  const std::vector<std::string> common = {"--set",        "scene=planes", "--set", "view=rev", "--resolution",
-                                           "64x64",        "--reps",       "1",     "--warmup", "0",
-                                           "--no-progress"};
-  auto run = [&](const std::string& name, std::vector<std::string> sets) {
-    std::vector<std::string> args = {"run", "oit", "--out", (dir / name).string()};
-    args.insert(args.end(), sets.begin(), sets.end());
-    args.insert(args.end(), common.begin(), common.end());
-    auto r = run_oitbench(args);
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    return read_csv_rows(dir / name);
-  };
-  const auto rows = run("both.csv", {"--set", "technique=WBOIT,MLAB", "--set", "fault=none,wrong-result"});
-  const auto alone = run("alone.csv", {"--set", "technique=MLAB"});
-  ASSERT_FALSE(alone.empty());
+// One oit run of planes rev at 64x64 (one repetition, no warm-up) with `sets` added, into `out`; its rows.
+static std::vector<Row> run_planes_rev_64(const std::filesystem::path& out, const std::vector<std::string>& sets) {
+  std::vector<std::string> args = {"run", "oit", "--out", out.string()};
+  args.insert(args.end(), sets.begin(), sets.end());
+  for (const char* a : {"--set", "scene=planes", "--set", "view=rev", "--resolution", "64x64", "--reps", "1",
+                        "--warmup", "0", "--no-progress"})
+    args.emplace_back(a);
+  auto r = run_oitbench(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return read_csv_rows(out);
+}
+
+// The total rows of a run where wrong-result cases share a reference with valid ones: each wrong one is
+// invalid, each other one ok and seen by `each_ok` (with its technique and fault); returns how many rows.
+static size_t check_wrong_results_stay_invalid(const std::vector<Row>& rows,
+                                               const std::function<void(const Row&, const std::string&)>& each_ok) {
   size_t totals = 0;
   for (const auto& row : rows) {
     if (row.at("pass") != "total") continue;
@@ -178,11 +177,28 @@ TEST(TimeAccount, ASharedReferenceKeepsEveryCheck) {
       continue;
     }
     EXPECT_EQ(row.at("status"), "ok") << what << ": " << row.at("reason");
+    each_ok(row, what);
+  }
+  return totals;
+}
+
+// The approximate techniques' cases of a run that see the same fragments share one reference view
+// (approx_case.cpp: reference_view); each still compares its own image: a wrong result (in the key) is
+// still invalid beside valid cases of the same view, and a case's error is what it is in a run of its own.
+TEST(TimeAccount, ASharedReferenceKeepsEveryCheck) {
+  const auto dir = temp_dir("account-reference");
+  auto run = [&](const std::string& name, const std::vector<std::string>& sets) {
+    return run_planes_rev_64(dir / name, sets);
+  };
+  const auto rows = run("both.csv", {"--set", "technique=WBOIT,MLAB", "--set", "fault=none,wrong-result"});
+  const auto alone = run("alone.csv", {"--set", "technique=MLAB"});
+  ASSERT_FALSE(alone.empty());
+  const size_t totals = check_wrong_results_stay_invalid(rows, [&](const Row& row, const std::string&) {
     if (row.at("technique") == "MLAB") {
       EXPECT_EQ(row.at("rmse"), alone.back().at("rmse"));
       EXPECT_EQ(row.at("total_fragments"), alone.back().at("total_fragments"));
     }
-  }
+  });
   EXPECT_EQ(totals, 4u);
 }
 
@@ -191,16 +207,8 @@ TEST(TimeAccount, ASharedReferenceKeepsEveryCheck) {
 // is still invalid beside valid cases of the same view, and each case's error is what it is in a run of its own.
 TEST(TimeAccount, EveryModelCheckedCaseSharesTheReferenceAndKeepsEveryCheck) {
   const auto dir = temp_dir("account-model-reference");
-  const std::vector<std::string> common = {"--set",        "scene=planes", "--set", "view=rev", "--resolution",
-                                           "64x64",        "--reps",       "1",     "--warmup", "0",
-                                           "--no-progress"};
-  auto run = [&](const std::string& name, std::vector<std::string> sets) {
-    std::vector<std::string> args = {"run", "oit", "--out", (dir / name).string()};
-    args.insert(args.end(), sets.begin(), sets.end());
-    args.insert(args.end(), common.begin(), common.end());
-    auto r = run_oitbench(args);
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    return read_csv_rows(dir / name);
+  auto run = [&](const std::string& name, const std::vector<std::string>& sets) {
+    return run_planes_rev_64(dir / name, sets);
   };
   const std::vector<std::string> shared = {"MLAB", "MBOIT", "WOIT", "STOCHASTIC", "SLAB"};
   const auto rows =
@@ -211,24 +219,15 @@ TEST(TimeAccount, EveryModelCheckedCaseSharesTheReferenceAndKeepsEveryCheck) {
     ASSERT_FALSE(own.empty()) << t;
     alone[t] = own.back();
   }
-  size_t totals = 0;
-  for (const auto& row : rows) {
-    if (row.at("pass") != "total") continue;
-    ++totals;
-    const std::string what = row.at("technique") + " " + row.at("fault");
-    if (row.at("fault") == "wrong-result") {
-      EXPECT_EQ(row.at("status"), "invalid") << what;
-      continue;
-    }
-    EXPECT_EQ(row.at("status"), "ok") << what << ": " << row.at("reason");
+  const size_t totals = check_wrong_results_stay_invalid(rows, [&](const Row& row, const std::string& what) {
     if (row.at("technique") == "MLAB") {  // the approximate cases report against the scene's planes too
       EXPECT_FALSE(row.at("truth_rmse").empty()) << what << ": the geometric reference (planes are analytic)";
     }
     auto it = alone.find(row.at("technique"));
-    if (it == alone.end()) continue;
+    if (it == alone.end()) return;
     for (const char* col : {"rmse", "model_rmse", "total_fragments"})
       EXPECT_EQ(row.at(col), it->second.at(col)) << what << " " << col;
-  }
+  });
   EXPECT_EQ(totals, 2 * shared.size());
 }
 
