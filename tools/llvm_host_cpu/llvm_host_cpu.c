@@ -4,7 +4,7 @@
 // different instruction scheduling. docs/drivers.md ("The host difference") shows it in use:
 //
 //   LD_PRELOAD=build/liboitbench_llvm_host_cpu.so OITBENCH_LLVM_MCPU=generic
-//     MESA_SHADER_CACHE_DIR=/tmp/cache-generic build/oitbench run ...   (one command line)
+//     MESA_SHADER_CACHE_DIR=cache-generic build/oitbench run ...   (one command line)
 //
 // (a cache folder of its own: Mesa's shader cache keys on the renderer string, not on the CPU LLVM tuned
 // for, so a shared cache would hand back the other CPU's code). Without OITBENCH_LLVM_MCPU it changes

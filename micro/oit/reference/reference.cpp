@@ -8,6 +8,8 @@
 #include <limits>
 #include <thread>
 
+#include "core/parallel_rows.hpp"
+
 namespace oitbench::oit {
 
 namespace {
@@ -28,23 +30,11 @@ bool gather(const HostLists& l, size_t pixel, std::vector<Frag>& out) {
   return true;
 }
 
-// Runs work(thread, pixel) for every pixel, rows spread over the cores (validation runs outside the
-// timed regions, so it may take them all); `work` writes only its pixel's results and its thread's.
-template <class Work>
-void for_each_pixel(const HostLists& l, unsigned threads, Work work) {
-  const size_t pixels = l.heads.size(), row = static_cast<size_t>(std::max(1, l.width));
-  auto rows = [&](unsigned t) {
-    for (size_t r = t; r * row < pixels; r += threads)
-      for (size_t p = r * row; p < std::min(pixels, (r + 1) * row); ++p) work(t, p);
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(rows, t);
-  rows(0);
-  for (auto& th : pool) th.join();
-}
-
+// The rows of the lists' image and the threads that spread them over the cores (validation runs outside
+// the timed regions, so it may take them all: core/parallel_rows.hpp).
+size_t row_of(const HostLists& l) { return static_cast<size_t>(std::max(1, l.width)); }
 unsigned reference_threads(const HostLists& l) {
-  return std::clamp(std::thread::hardware_concurrency(), 1u, static_cast<unsigned>(std::max(1, l.height)));
+  return parallel_row_threads((l.heads.size() + row_of(l) - 1) / row_of(l));
 }
 
 }  // namespace
@@ -61,7 +51,7 @@ ListStats list_stats(const HostLists& l) {
   };
   const unsigned threads = reference_threads(l);
   std::vector<Partial> part(threads);
-  for_each_pixel(l, threads, [&](unsigned t, size_t p) {
+  parallel_rows(l.heads.size(), row_of(l), threads, [&](unsigned t, size_t p) {
     Partial& w = part[t];
     if (!gather(l, p, w.f)) {
       w.first_broken = std::min(w.first_broken, p);
@@ -162,7 +152,7 @@ std::vector<double> composite_reference(const HostLists& l, const Backdrop& back
   std::vector<double> out(pixels * 3);
   const unsigned threads = reference_threads(l);
   std::vector<std::vector<Frag>> frags(threads);
-  for_each_pixel(l, threads, [&](unsigned t, size_t p) {
+  parallel_rows(l.heads.size(), row_of(l), threads, [&](unsigned t, size_t p) {
     std::vector<Frag>& f = frags[t];
     gather(l, p, f);
     // Near to far; equal depths ordered by colour bits so the reference never depends on list order.
