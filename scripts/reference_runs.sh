@@ -14,6 +14,10 @@
 #   scripts/reference_runs.sh --target-ci 3        repeat each case until its median's 95% interval is
 #                                                  within +-3% (default here 5: the reference runs' bound;
 #                                                  oitbench's own default is 3; a case that misses it says so)
+#   scripts/reference_runs.sh --max-case-s 5 --max-reps 20
+#                                                  the stopping rule's limits for every preset (oitbench's
+#                                                  defaults, 10 s and 30, unless given): fewer minutes, more
+#                                                  rows flagged outside the target (docs/scripts.md)
 #   scripts/reference_runs.sh --driver zink --only default,knowles2014-quick,bruell2018-approx
 #                                                  the same on another driver, into results/<its driver>/
 #                                                  (zink over lavapipe: results/zink-lavapipe/)
@@ -63,6 +67,7 @@ only=""
 with_opt_in=0
 report_only=0
 target_ci=5
+limits=()  # --max-reps / --max-case-s, passed to every preset
 while [ $# -gt 0 ]; do
   case "$1" in
     --only) [ $# -ge 2 ] || { echo "reference_runs.sh: --only needs PRESET[,PRESET...]" >&2; exit 2; }
@@ -72,6 +77,12 @@ while [ $# -gt 0 ]; do
     --with-opt-in) with_opt_in=1; shift ;;
     --target-ci) [ $# -ge 2 ] || { echo "reference_runs.sh: --target-ci needs a percentage" >&2; exit 2; }
                  target_ci=$2; shift 2 ;;
+    --max-reps|--max-case-s)
+      [ $# -ge 2 ] || { echo "reference_runs.sh: $1 needs a number" >&2; exit 2; }
+      pattern='^[0-9]+([.][0-9]+)?$'
+      [ "$1" = --max-reps ] && pattern='^[0-9]+$'
+      [[ $2 =~ $pattern ]] || { echo "reference_runs.sh: $1 needs a number, not '$2'" >&2; exit 2; }
+      limits+=("$1" "$2"); shift 2 ;;
     --driver) [ $# -ge 2 ] || { echo "reference_runs.sh: --driver needs a name" >&2; exit 2; }
               driver=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
@@ -171,7 +182,7 @@ for name in "${presets[@]}"; do
   rm -f "$csv" "$raw"  # --out appends to a file with the same header: start from nothing
   say "preset $i/${#presets[@]}: $name"
   t0=$SECONDS
-  "$OITBENCH" run --preset "$name" --driver "$driver" --target-ci "$target_ci" --out "$csv" --raw "$raw"
+  "$OITBENCH" run --preset "$name" --driver "$driver" --target-ci "$target_ci" "${limits[@]}" --out "$csv" --raw "$raw"
   rc=$?
   [ $rc -eq 130 ] && { say "interrupted during $name"; exit 130; }
   say "preset $name: exit $rc after $(((SECONDS - t0) / 60))m$(((SECONDS - t0) % 60))s"
