@@ -1,4 +1,5 @@
 """Running the scripts the way a user does: /usr/bin/python3 (Debian's, with matplotlib) in a subprocess."""
+import csv
 import os
 import shutil
 import subprocess
@@ -50,3 +51,15 @@ class TempDirTest(unittest.TestCase):
             head = f.read(8)
         self.assertEqual(head, PNG_MAGIC, f"{path} is not a PNG")
         self.assertGreater(os.path.getsize(path), 5000, f"{path} is suspiciously small")
+
+
+def edit_csv(path, change):
+    """Rewrites a CSV through change(header, rows) -> (header, rows)."""
+    with open(path, newline="", encoding="utf-8") as f:
+        reader = csv.DictReader(f)
+        header, rows = list(reader.fieldnames), [dict(r) for r in reader]
+    header, rows = change(header, rows)
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        w = csv.DictWriter(f, fieldnames=header, lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)

@@ -5,13 +5,12 @@ real runs."""
 import collections
 import csv
 import math
-import os
 import random
 import re
 import unittest
 
 import synthetic as syn
-from support import TempDirTest, oitbench_exe, run_oitbench, run_script
+from support import TempDirTest, edit_csv, oitbench_exe, run_oitbench, run_script
 
 SUMMARY = re.compile(r"^(\d+) no measurable difference, (\d+) inside the between-run noise band \(at least "
                      r"[\d.]+x\), (\d+) beyond it with overlapping repetitions, (\d+) changed \((\d+) slower, "
@@ -195,15 +194,7 @@ class CompareRealRuns(TempDirTest):
 
     @staticmethod
     def relabel_draws(path, draws):
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            header, rows = reader.fieldnames, list(reader)
-        for r in rows:
-            r["draws"] = str(draws)
-        with open(path, "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=header, lineterminator="\n")
-            w.writeheader()
-            w.writerows(rows)
+        edit_csv(path, lambda header, rows: (header, [dict(r, draws=str(draws)) for r in rows]))
 
     def test_identical_runs_within_noise_and_a_slow_one_flagged(self):
         a, a_raw = self.run_once("a", 8)

@@ -1,7 +1,6 @@
 """findings.py: results/llvmpipe/FINDINGS.md is what the generator makes of the committed CSVs (regenerate
 it when they change), its numbers follow the CSVs, it reads schema 2's column names as well as schema 1's,
 and a folder without runs is a clear error."""
-import csv
 import difflib
 import os
 import shutil
@@ -9,7 +8,7 @@ import subprocess
 import sys
 import unittest
 
-from support import PYTHON, TempDirTest
+from support import PYTHON, TempDirTest, edit_csv
 from synthetic import SCRIPTS
 
 sys.path.insert(0, SCRIPTS)
@@ -42,18 +41,6 @@ def sections(text):
 def same_place(text, src, dst):
     """The text as if generated from folder `dst` instead of `src` (the page names its folder)."""
     return text.replace(os.path.relpath(src, REPO), os.path.relpath(dst, REPO))
-
-
-def edit_csv(path, change):
-    """Rewrites a CSV through change(header, rows) -> (header, rows)."""
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        header, rows = list(reader.fieldnames), [dict(r) for r in reader]
-    header, rows = change(header, rows)
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        w = csv.DictWriter(f, fieldnames=header, lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
 
 
 class FindingsTest(TempDirTest):

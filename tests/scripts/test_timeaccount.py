@@ -3,36 +3,26 @@ with its wall time and its cases' shares, one per list with the list's total and
 list's wall time, and a CSV without an account (an older schema) or one that cannot be read named, never
 a traceback. Read from a committed reference CSV (resolve-speedups) and a copy of default.csv without the
 account's columns (the schema before them), so the test holds whatever run the committed files came from."""
-import csv
 import os
 import re
-import tempfile
+import shutil
 import unittest
 
+from support import TempDirTest, edit_csv
 from synthetic import SCRIPTS
 from oitbench import timeaccount
 
 PRESETS = os.path.join(os.path.dirname(SCRIPTS), "results", "llvmpipe", "presets")
 
 
-def without_account(src, dst):
-    """src's rows without case_wall_s and the phase_*_s columns: a CSV of an older schema."""
-    with open(src, newline="") as f:
-        reader = csv.DictReader(f)
-        keep = [k for k in reader.fieldnames if k != "case_wall_s" and not k.startswith("phase_")]
-        rows = [{k: r[k] for k in keep} for r in reader]
-    with open(dst, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keep, lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
-
-
-class ReferenceRunsAccount(unittest.TestCase):
+class ReferenceRunsAccount(TempDirTest):
     def test_each_preset_and_each_list(self):
-        tmp = tempfile.TemporaryDirectory()
-        self.addCleanup(tmp.cleanup)
-        older = os.path.join(tmp.name, "default.csv")
-        without_account(os.path.join(PRESETS, "default.csv"), older)
+        # default.csv as the schema before the account wrote it: no case_wall_s, no phase_*_s.
+        older = shutil.copy(os.path.join(PRESETS, "default.csv"), self.path("default.csv"))
+        def account(k):
+            return k == "case_wall_s" or k.startswith("phase_")
+        edit_csv(older, lambda header, rows: ([k for k in header if not account(k)],
+                                              [{k: v for k, v in r.items() if not account(k)} for r in rows]))
         with_account = os.path.join(PRESETS, "resolve-speedups.csv")
         acc = timeaccount.accounts_of_file(with_account)
         self.assertGreater(acc.cases, 0)
