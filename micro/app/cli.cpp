@@ -38,7 +38,7 @@ struct CliState {
   RunCommand run;
   double target_ci_pct = 0;
   double warmup_settle_pct = 0;
-  bool no_interleave = false, no_progress = false, no_program_cache = false;
+  bool no_interleave = false, no_progress = false, no_program_cache = false, no_mem_probe = false;
   std::string shard;              // --shard I/N or auto
   std::string memory_limit;       // --memory-limit SIZE as given
   std::string view_memory_limit;  // view's
@@ -251,6 +251,10 @@ void declare_run_execution(CLI::App& run, CliState& s) {
   run.add_flag("--no-program-cache", s.no_program_cache,
                "Compile every program from source (to measure compile time); default: reuse linked programs "
                "from ~/.cache/oitbench/programs (glGetProgramBinary, keyed on sources, defines and driver)");
+  run.add_flag("--no-mem-probe", s.no_mem_probe,
+               "Do not measure the host's memory latency after each timed round (about 1 ms a round; the "
+               "host_mem_ns columns stay empty). On a software renderer it tells a slow list traversal from a "
+               "slow host: docs/drivers.md");
   run.add_flag("--no-interleave", s.no_interleave,
                "Run each case's repetitions back to back (default: A B C A B C ...)");
   run.add_option("--isolate", o.isolate,
@@ -340,6 +344,7 @@ int execute_run(const CLI::App& run, CliState& s) {
   o.sampling.warmup_settle = s.warmup_settle_pct / 100;
   o.warmup_given = run.count("--warmup") > 0;
   o.interleave = !s.no_interleave;
+  o.mem_probe = !s.no_mem_probe;
   o.program_cache = !s.no_program_cache;
   o.progress = !s.no_progress;
   if (!s.memory_limit.empty()) o.memory_limit = parse_byte_size(s.memory_limit);

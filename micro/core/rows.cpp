@@ -75,6 +75,10 @@ std::vector<Row> summary_rows(const RowSettings& s, const CaseRecord& c) {
   base["sample_runs"] = std::to_string(c.sample_runs);
   if (c.sample_units > 0) base["sample_units"] = std::to_string(c.sample_units);
   base["stop"] = c.stop;
+  if (!c.mem_ns.empty()) {
+    base["host_mem_ns"] = fmt_number(median_of(c.mem_ns));
+    base["host_mem_max_ns"] = fmt_number(*std::max_element(c.mem_ns.begin(), c.mem_ns.end()));
+  }
   if (s.target_ci > 0) base["target_ci_pct"] = fmt_number(s.target_ci * 100);
   base["baseline"] = c.baseline;
   std::vector<std::string> passes;

@@ -40,6 +40,7 @@ struct CaseRecord {
   PhaseTimes phases;                            // where its wall time went (core/phases.hpp)
   bool accounted = false;                       // the runner kept that account (case_wall_s and phase_*_s)
   int warmup_kept = 0;                          // warm-up repetitions that had settled, kept as samples
+  std::vector<double> mem_ns;                   // the host's memory latency after each of its timed rounds
 
   void fail(Status s, const std::string& why);  // the first failure is the one kept
   // Appends to what the rows' reason will say: the note of an ok case, the reason of another.

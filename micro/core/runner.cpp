@@ -17,6 +17,7 @@
 #include "core/groups.hpp"
 #include "core/interrupt.hpp"
 #include "core/isolation.hpp"
+#include "core/memory_probe.hpp"
 #include "core/outcomes.hpp"
 #include "core/phases.hpp"
 #include "core/plan.hpp"
@@ -459,7 +460,8 @@ class Runner {
       std::vector<double> sampled(live.size());  // each case's timed seconds before this round
       for (size_t i = 0; i < live.size(); ++i) sampled[i] = live[i].record.phases[Phase::Samples];
       for (auto& rep : g.round) rep.ran = false;
-      timed_round(g, r, !checked_size);
+      const std::vector<char> ran = timed_round(g, r, !checked_size);
+      probe_memory(g, ran);
       if (!checked_size) {
         const bool resized = check_sizes(g);
         const bool first_check = size_checks == 0;
@@ -473,6 +475,7 @@ class Runner {
           for (auto& c : live) {
             c.record.cpu.clear();
             c.record.gpu.clear();
+            c.record.mem_ns.clear();
           }
           g.done.assign(live.size(), false);
           timed_start = Clock::now();  // a round taken as warm-up is not timed work
@@ -487,9 +490,21 @@ class Runner {
     }
   }
 
+  // The host's memory latency after a round (core/memory_probe.hpp), in the record of every case that ran in
+  // it: about a millisecond between rounds, outside every case's timed samples (the time account's `other`).
+  void probe_memory(GroupRun& g, const std::vector<char>& ran) {
+    if (!opt_.mem_probe || std::find(ran.begin(), ran.end(), 1) == ran.end()) return;
+    if (!mem_probe_) mem_probe_ = std::make_unique<MemoryProbe>();
+    const double ns = mem_probe_->latency_ns();
+    for (size_t i = 0; i < g.live.size(); ++i)
+      if (ran[i]) g.live[i].record.mem_ns.push_back(ns);
+  }
+
   // One timed round over the group's running cases; raw rows go to the file, or, while the round's sizes
-  // are not confirmed (`checking`), wait in g.round with the repetitions (write_checked_round).
-  void timed_round(GroupRun& g, int r, bool checking) {
+  // are not confirmed (`checking`), wait in g.round with the repetitions (write_checked_round). Returns
+  // which cases ran a repetition.
+  std::vector<char> timed_round(GroupRun& g, int r, bool checking) {
+    std::vector<char> ran(g.live.size(), 0);
     for (size_t i = 0; i < g.live.size(); ++i) {
       auto& c = g.live[i];
       if (!c.active() || g.done[i] || signals_.stopped()) continue;
@@ -504,6 +519,7 @@ class Runner {
           if (!run_sample(c, g.timer, rec.sample_runs, g.scale[i], samples, total)) continue;
         }
         double gpu_total = rec.add_repetition(samples, total);
+        ran[i] = 1;
         if (checking)
           g.round[i] = {std::move(samples), total, g.scale[i], rec.phases[Phase::Samples] - before,
                         rec.sample_runs,    true};
@@ -513,6 +529,7 @@ class Runner {
         rec.fail(Status::Error, std::string("run: ") + e.what());
       }
     }
+    return ran;
   }
 
   // The warm-up ends when timings settle, not after a fixed count: where the first timed round shows that
@@ -787,6 +804,7 @@ class Runner {
     if (!opt_.interleave) args.push_back("--no-interleave");
     if (!opt_.program_cache) args.push_back("--no-program-cache");
     if (opt_.sync_passes) args.push_back("--sync-passes");
+    if (!opt_.mem_probe) args.push_back("--no-mem-probe");
     if (opt_.memory_limit) args.insert(args.end(), {"--memory-limit", std::to_string(*opt_.memory_limit)});
     // Only what the case uses: the child's grid gives the rest their defaults and marks them unused.
     for (const auto& [k, v] : params.used_values()) args.insert(args.end(), {"--set", k + "=" + v});
@@ -885,6 +903,7 @@ class Runner {
   std::mutex mutex_;
   PhaseClock clock_;    // the time account's clock: charges the case being worked on (core/phases.hpp)
   RunAccount account_;  // the run's: its start, writing, children, every case's phases
+  std::unique_ptr<MemoryProbe> mem_probe_;  // built at the first timed round that probes (--no-mem-probe: never)
 };
 
 }  // namespace

@@ -170,6 +170,15 @@ std::vector<ColumnSpec> timing_columns() {
       {"program_cache", T::Text, "", "hit, miss, partial or off: whether compile_ms paid for compiling", "timing"},
       {"warmup_ms", T::Number, "ms",
        "the first (untimed) repetition, JIT included; where the work scales (sample_units), one unit of it", "timing"},
+      {"host_mem_ns", T::Number, "ns",
+       "the host's memory latency while the case ran: median over its timed rounds of a dependent-load chase "
+       "through 64 MiB after each round (core/memory_probe.hpp); empty with --no-mem-probe. On a software renderer "
+       "this is the GPU's memory: a resolve that walks lists follows it, a sort in local arrays does not",
+       "timing"},
+      {"host_mem_max_ns", T::Number, "ns",
+       "the slowest of those chases: a memory-latency episode during the case (another tenant's traffic on a "
+       "shared host) shows here, beside times it slowed (docs/drivers.md)",
+       "timing"},
   };
 }
 

@@ -20,8 +20,9 @@ class Registry;
 // and run identity (run_id, also in raw rows; tags) and the machine's (cpu_vendor/family/model_id/stepping,
 // cpu_isa, cpu_count, memory_bytes, kernel, machine_id, mesa_version, llvm_version, llvm_vector_bits).
 // 6: the time account (case_wall_s and phase_*_s, on total rows; core/phases.hpp).
-// 7: the GPU's identity (gpu_pci_id, gpu_vbios_version).
-inline constexpr int kCsvSchema = 7;
+// 7: the GPU's identity (gpu_pci_id, gpu_vbios_version). 8: the host's memory latency during the case
+// (host_mem_ns, host_mem_max_ns; core/memory_probe.hpp).
+inline constexpr int kCsvSchema = 8;
 
 enum class Status { Ok, Invalid, Unsupported, Error, Timeout };
 inline constexpr Status kAllStatuses[] = {Status::Ok, Status::Invalid, Status::Unsupported, Status::Error,

@@ -140,6 +140,10 @@ TEST(Cli, EveryRowCarriesTheRunIdTagsAndMachine) {
     EXPECT_FALSE(row["cpu_count"].empty());
     EXPECT_FALSE(row["memory_bytes"].empty());
     EXPECT_FALSE(row["kernel"].empty());
+    // the host's memory latency between rounds (core/memory_probe.hpp): a median at most the maximum
+    const double mem = std::stod(row["host_mem_ns"]), mem_max = std::stod(row["host_mem_max_ns"]);
+    EXPECT_GT(mem, 0);
+    EXPECT_LE(mem, mem_max);
     if (contains(row["gl_renderer"], "llvmpipe")) {
       EXPECT_FALSE(row["llvm_version"].empty());
       EXPECT_FALSE(row["llvm_vector_bits"].empty());
@@ -157,6 +161,16 @@ TEST(Cli, EveryRowCarriesTheRunIdTagsAndMachine) {
   EXPECT_NE(iso_rows[0]["run_id"], id);
   EXPECT_EQ(iso_rows[0]["run_id"], iso_rows[1]["run_id"]);
   EXPECT_EQ(iso_rows[1]["tags"], "k=v");
+  EXPECT_FALSE(iso_rows[1]["host_mem_ns"].empty()) << "an isolated case probes the memory too";
+  // --no-mem-probe: no probe, in the parent and in an isolated child (the flag is passed on)
+  auto quiet = dir / "quiet.csv";
+  r = run_oitbench({"run", "occupancy", "--quick", "--set", "size=1", "--isolate", "always", "--no-mem-probe", "--out",
+                    quiet.string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (auto& row : read_csv_rows(quiet)) {
+    EXPECT_TRUE(row["host_mem_ns"].empty()) << row["host_mem_ns"];
+    EXPECT_TRUE(row["host_mem_max_ns"].empty());
+  }
   for (std::vector<std::string> bad : {std::vector<std::string>{"--tag", "nokey"},
                                        {"--tag", "9a=1"},
                                        {"--tag", "a=1", "--tag", "a=2"},

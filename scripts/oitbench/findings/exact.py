@@ -280,6 +280,17 @@ def resolve_label(r):
     return label
 
 
+def memory_text(rows):
+    """The Host line's memory latency (the column `memory ns` per row below)."""
+    m = host_memory(rows)
+    if m is None:
+        return ""
+    return (f" Memory latency between rounds (a dependent-load chase through 64 MiB, the rows' `host_mem_ns`): "
+            f"median {m[0]:.0f} ns, slowest {m[1]:.0f} ns. A list traversal's time follows it and a sort's "
+            "in local arrays does not, so a pair measured while it rose is not the CPU's doing: "
+            "docs/drivers.md, \"The host difference\".")
+
+
 def host_identification(r):
     """What tells two hosts' resolve speedups apart (issue 32: llvmpipe's JIT follows the CPU's vector
     extensions): the CPU's vendor, family/model/stepping, whether it has AVX-512, LLVM and its vector width."""
@@ -291,6 +302,26 @@ def host_identification(r):
     avx = "AVX-512" if any(x.startswith("avx512") for x in isa) else "AVX2" if "avx2" in isa else "no AVX2"
     llvm = f"LLVM {r.get('llvm_version') or '?'}, {r.get('llvm_vector_bits') or '?'}-bit vectors"
     return f"{cpu} (family/model/stepping {fms}), {avx}, {r.get('cpu_count') or '?'} CPUs; {llvm}"
+
+
+def host_memory(rows):
+    """The host's memory latency over the rows (schema 8's host_mem_ns: a pointer chase between rounds), with
+    the slowest chase; None for rows without it."""
+    med = [v for v in (num(r, "host_mem_ns") for r in rows) if v is not None]
+    top = [v for v in (num(r, "host_mem_max_ns") for r in rows) if v is not None]
+    if not med:
+        return None
+    return sorted(med)[len(med) // 2], max(top or med)
+
+
+def memory_cell(r):
+    """One row's memory latency: its median chase, and its slowest where that was 1.5 times the median or more
+    (an episode during the case: times of a traversal-bound resolve rise with it)."""
+    m = host_memory([r])
+    if m is None:
+        return DASH
+    text = f"{m[0]:.0f}"
+    return text + f" (max {m[1]:.0f})" if m[1] >= 1.5 * m[0] else text
 
 
 def speedup_text(entry, pass_):
@@ -326,7 +357,7 @@ def section_resolve_speedups(f):
                   "baseline, into linked lists.", "",
                   f"Host: {host_identification(r0)}. The same binary and Mesa give other speedups on another CPU "
                   "(llvmpipe compiles for the CPU it runs on: docs/drivers.md#llvmpipe-compiles-for-this-cpu); "
-                  "compare speedups across hosts only with this line beside them.", ""]
+                  "compare speedups across hosts only with this line beside them." + memory_text(oit), ""]
         speed, base_ms = {}, {}
         for pass_ in ("resolve", "total"):
             by_view = {}
@@ -377,7 +408,7 @@ def section_resolve_speedups(f):
             for label in order:
                 c = cases[label]
                 body.append([f"{view[0]} {view[1]}", label, f_ms(c.get("resolve_ms")),
-                             speedup_text(c, "resolve"), speedup_text(c, "total")])
+                             speedup_text(c, "resolve"), speedup_text(c, "total"), memory_cell(c["row"])])
             if order and cases[order[0]].get("resolve"):
                 best = cases[order[0]]
                 goal = RESOLVE_GOAL_REV if view == ("planes", "rev") else RESOLVE_GOAL_FWD if view[1] == "fwd" else None
@@ -387,8 +418,8 @@ def section_resolve_speedups(f):
                                   tables.fmt(best.get("total"), 3) + "x" if best.get("total") else DASH,
                                   f"{goal:g}x" if goal else DASH, met,
                                   f"{f_ms(min(b))}–{f_ms(max(b))}" if b else DASH])
-        lines += table(["view", "resolve", "resolve ms", "resolve speedup", "total speedup"], body,
-                       [False, False, True, True, True])
+        lines += table(["view", "resolve", "resolve ms", "resolve speedup", "total speedup", "memory ns"], body,
+                       [False, False, True, True, True, True])
         lines += [f"The fastest per view, and how far {BASE} itself moved between the view's groups (the "
                   "reason only paired ratios are compared):", ""]
         lines += table(["view", "fastest resolve", "resolve speedup", "total speedup", "goal", "goal met",
