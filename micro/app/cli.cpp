@@ -255,6 +255,10 @@ void declare_run_execution(CLI::App& run, CliState& s) {
                "Do not measure the host's memory latency after each timed round (about 1 ms a round; the "
                "host_mem_ns columns stay empty). On a software renderer it tells a slow list traversal from a "
                "slow host: docs/drivers.md");
+  run.add_option("--mem-probe-mib", o.mem_probe_mib,
+                 "The memory probe's buffer in MiB (default 64): larger than the CPU's last-level cache (AMD's "
+                 "3D V-Cache has 96 MiB and more), or the chase measures the cache")
+      ->transform(number(whole(1, 4096)));
   run.add_flag("--no-interleave", s.no_interleave,
                "Run each case's repetitions back to back (default: A B C A B C ...)");
   run.add_option("--isolate", o.isolate,

@@ -22,6 +22,7 @@ MemoryProbe::MemoryProbe(size_t bytes) {
   // A random visiting order (Fisher-Yates); each line points at the next in it and the last at the first:
   // one cycle through every line, so the chase never settles into a short loop the cache could hold, and
   // the next line is never one a prefetcher would guess.
+  lines_.resize(n);  // the large allocation first: a refused one costs nothing else
   std::vector<uint32_t> order(n);
   for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(i);
   uint64_t state = 0x6f6974626e656863ull;  // fixed: every run chases the same cycle
@@ -30,7 +31,6 @@ MemoryProbe::MemoryProbe(size_t bytes) {
   // lines, random ones only within the order's 4 bytes a line.
   std::vector<uint32_t> place(n);
   for (size_t i = 0; i < n; ++i) place[order[i]] = static_cast<uint32_t>(i);
-  lines_.resize(n);
   for (size_t j = 0; j < n; ++j) lines_[j].next = order[(place[j] + 1) % n];
 }
 

@@ -493,8 +493,14 @@ class Runner {
   // The host's memory latency after a round (core/memory_probe.hpp), in the record of every case that ran in
   // it: about a millisecond between rounds, outside every case's timed samples (the time account's `other`).
   void probe_memory(GroupRun& g, const std::vector<char>& ran) {
-    if (!opt_.mem_probe || std::find(ran.begin(), ran.end(), 1) == ran.end()) return;
-    if (!mem_probe_) mem_probe_ = std::make_unique<MemoryProbe>();
+    if (!opt_.mem_probe || mem_probe_failed_ || std::find(ran.begin(), ran.end(), 1) == ran.end()) return;
+    if (!mem_probe_) try {
+        mem_probe_ = std::make_unique<MemoryProbe>(static_cast<size_t>(opt_.mem_probe_mib) << 20);
+      } catch (const std::exception& e) {  // its buffer refused (RLIMIT_AS, RLIMIT_DATA): rows without it
+        mem_probe_failed_ = true;
+        std::fprintf(stderr, "oitbench: warning: no memory probe (host_mem_ns stays empty): %s\n", e.what());
+        return;
+      }
     const double ns = mem_probe_->latency_ns();
     for (size_t i = 0; i < g.live.size(); ++i)
       if (ran[i]) g.live[i].record.mem_ns.push_back(ns);
@@ -805,6 +811,7 @@ class Runner {
     if (!opt_.program_cache) args.push_back("--no-program-cache");
     if (opt_.sync_passes) args.push_back("--sync-passes");
     if (!opt_.mem_probe) args.push_back("--no-mem-probe");
+    args.insert(args.end(), {"--mem-probe-mib", std::to_string(opt_.mem_probe_mib)});
     if (opt_.memory_limit) args.insert(args.end(), {"--memory-limit", std::to_string(*opt_.memory_limit)});
     // Only what the case uses: the child's grid gives the rest their defaults and marks them unused.
     for (const auto& [k, v] : params.used_values()) args.insert(args.end(), {"--set", k + "=" + v});
@@ -904,6 +911,7 @@ class Runner {
   PhaseClock clock_;    // the time account's clock: charges the case being worked on (core/phases.hpp)
   RunAccount account_;  // the run's: its start, writing, children, every case's phases
   std::unique_ptr<MemoryProbe> mem_probe_;  // built at the first timed round that probes (--no-mem-probe: never)
+  bool mem_probe_failed_ = false;           // its buffer could not be allocated: warned once, no probes
 };
 
 }  // namespace

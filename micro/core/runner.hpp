@@ -58,6 +58,7 @@ struct RunOptions {
   std::string timer = "auto";  // auto | cpu | gpu
   bool sync_passes = false;    // glFinish around every pass on hardware drivers too (always on software ones)
   bool mem_probe = true;       // the host's memory latency between timed rounds (host_mem_ns; core/memory_probe.hpp)
+  int mem_probe_mib = 64;      // --mem-probe-mib: the chase's buffer
   bool interleave = true;
   std::string isolate = "auto";      // auto (hang-prone experiments) | always | never
   double timeout_s = 600;            // per case, watchdog

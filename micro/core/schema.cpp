@@ -172,7 +172,8 @@ std::vector<ColumnSpec> timing_columns() {
        "the first (untimed) repetition, JIT included; where the work scales (sample_units), one unit of it", "timing"},
       {"host_mem_ns", T::Number, "ns",
        "the host's memory latency while the case ran: median over its timed rounds of a dependent-load chase "
-       "through 64 MiB after each round (core/memory_probe.hpp); empty with --no-mem-probe. On a software renderer "
+       "through 64 MiB (--mem-probe-mib) after each round (core/memory_probe.hpp); empty with --no-mem-probe. On a "
+       "software renderer "
        "this is the GPU's memory: a resolve that walks lists follows it, a sort in local arrays does not",
        "timing"},
       {"host_mem_max_ns", T::Number, "ns",

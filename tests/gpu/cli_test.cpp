@@ -1,6 +1,7 @@
 // The command line end to end on the embedded default: contexts, CSV, errors, exit codes,
 // interruption and the watchdog.
 #include <signal.h>
+#include <sys/resource.h>
 
 #include <fstream>
 
@@ -123,6 +124,35 @@ TEST(Cli, UsageErrorsExitTwoAndListTheValidNames) {
 
 // Issue 31: one run id per invocation in every row and raw sample (an isolated case's too), the tags
 // sorted and escaped, the machine's identity; a malformed or repeated --tag is a usage error naming it.
+// The memory probe (core/memory_probe.hpp) is the runner's, not a case's: where its buffer is refused (here a
+// 4 GiB buffer under a 2 GiB address-space limit) the run warns once and its cases stay ok, without the column.
+TEST(Cli, AMemoryProbeThatCannotAllocateWarnsAndTheCasesStayOk) {
+  auto dir = temp_dir("probe");
+  auto out = dir / "probe.csv";
+  rlimit before{};
+  ASSERT_EQ(getrlimit(RLIMIT_AS, &before), 0);
+  rlimit limited = before;
+  limited.rlim_cur = std::min<rlim_t>(before.rlim_max, rlim_t{2} << 30);  // the soft limit: restored below
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &limited), 0);
+  auto r = run_oitbench({"run", "occupancy", "--quick", "--set", "size=1", "--mem-probe-mib", "4096", "--isolate",
+                         "never", "--out", out.string(), "--no-progress"});
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &before), 0);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "warning: no memory probe")) << r.err;
+  auto rows = read_csv_rows(out);
+  ASSERT_EQ(rows.size(), 2u);
+  for (auto& row : rows) {
+    EXPECT_EQ(row["status"], "ok") << row["reason"];
+    EXPECT_TRUE(row["host_mem_ns"].empty()) << row["host_mem_ns"];
+  }
+  // and the size is bounded before anything runs: a usage error naming the option
+  for (const char* bad : {"0", "4097", "64M"}) {
+    auto u = run_oitbench({"run", "occupancy", "--quick", "--mem-probe-mib", bad, "--out", out.string()});
+    EXPECT_EQ(u.exit_code, 2) << bad;
+    EXPECT_TRUE(contains(u.err, "--mem-probe-mib")) << u.err;
+  }
+}
+
 TEST(Cli, EveryRowCarriesTheRunIdTagsAndMachine) {
   auto dir = temp_dir("identity");
   auto out = dir / "id.csv", raw = dir / "id_raw.csv";
