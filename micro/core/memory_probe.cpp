@@ -21,7 +21,7 @@ MemoryProbe::MemoryProbe(size_t bytes) {
   if (n > UINT32_MAX) throw std::invalid_argument("memory probe: at most 2^32 lines");
   // A random visiting order (Fisher-Yates); each line points at the next in it and the last at the first:
   // one cycle through every line, so the chase never settles into a short loop the cache could hold, and
-  // the next line is never one a prefetcher would guess.
+  // the next line is any of the buffer's lines, not one a prefetcher would guess.
   lines_.resize(n);  // the large allocation first: a refused one costs nothing else
   std::vector<uint32_t> order(n);
   for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(i);
