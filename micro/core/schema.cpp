@@ -173,8 +173,8 @@ std::vector<ColumnSpec> timing_columns() {
       {"host_mem_ns", T::Number, "ns",
        "the host's memory latency while the case ran: median over its timed rounds of a dependent-load chase "
        "through 64 MiB (--mem-probe-mib) after each round (core/memory_probe.hpp); empty with --no-mem-probe. On a "
-       "software renderer "
-       "this is the GPU's memory: a resolve that walks lists follows it, a sort in local arrays does not",
+       "software renderer this is the GPU's memory: a resolve that walks lists follows it, a sort in local arrays does "
+       "not",
        "timing"},
       {"host_mem_max_ns", T::Number, "ns",
        "the slowest of those chases: a memory-latency episode during the case (another tenant's traffic on a "

@@ -121,6 +121,35 @@ class FindingsTest(TempDirTest):
         moved = [t for t in old_parts if old_parts[t] != new_parts[t]]
         self.assertEqual(sorted(moved), ["## Occupancy", "## Sort and insert"])
 
+    def test_the_memory_column_follows_the_rows_and_marks_an_episode(self):
+        """The resolve table's `memory ns` is each row's host_mem_ns, with its slowest chase where that reached 1.5x
+        (an episode that slows a list walk); rows of a schema before the probe show a dash and no Host sentence."""
+        changed = self.copy_results("memory")
+
+        def episode(header, rows):
+            for r in rows:
+                if (r["technique"], r["scene"], r["view"], r["order_check"], r["capture"]) == \
+                        ("BASE-IS", "planes", "rev", "on", "PPLL"):
+                    r["host_mem_ns"], r["host_mem_max_ns"] = "411", "977"
+            return header, rows
+
+        edit_csv(os.path.join(changed, "presets", "resolve-speedups.csv"), episode)
+        text = sections(generate(changed, cwd=self.dir))["## The fastest exact resolve, paired"]
+        row = [line for line in text.splitlines() if line.startswith("| planes rev | BASE-IS+order-check |")]
+        self.assertEqual(len(row), 1, text)
+        self.assertTrue(row[0].endswith("| 411 (max 977) |"), row[0])
+        self.assertIn("slowest 977 ns", text)
+
+        def no_probe(header, rows):
+            gone = ("host_mem_ns", "host_mem_max_ns")
+            return [k for k in header if k not in gone], [{k: v for k, v in r.items() if k not in gone} for r in rows]
+
+        edit_csv(os.path.join(changed, "presets", "resolve-speedups.csv"), no_probe)
+        text = sections(generate(changed, cwd=self.dir))["## The fastest exact resolve, paired"]
+        self.assertNotIn("Memory latency between rounds", text)
+        row = [line for line in text.splitlines() if line.startswith("| planes rev | BASE-IS+order-check |")]
+        self.assertTrue(row[0].endswith(f"| {findings.DASH} |"), row[0])
+
     def test_schema_2_names_give_the_same_findings(self):
         """Schema 2 renames the metric max_frags to max_frags_used, adds sort_source and leaves empty the
         parameters a case does not use; the findings must not change."""

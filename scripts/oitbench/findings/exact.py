@@ -285,7 +285,7 @@ def memory_text(rows):
     m = host_memory(rows)
     if m is None:
         return ""
-    return (f" Memory latency between rounds (a dependent-load chase through 64 MiB, the rows' `host_mem_ns`): "
+    return (f" Memory latency between rounds (a dependent-load chase, the rows' `host_mem_ns`): "
             f"median {m[0]:.0f} ns, slowest {m[1]:.0f} ns. A list traversal's time follows it and a sort's "
             "in local arrays does not, so a pair measured while it rose is not the CPU's doing: "
             "docs/drivers.md, \"The host difference\".")
@@ -311,7 +311,7 @@ def host_memory(rows):
     top = [v for v in (num(r, "host_mem_max_ns") for r in rows) if v is not None]
     if not med:
         return None
-    return sorted(med)[len(med) // 2], max(top or med)
+    return oitres.median(med), max(top or med)
 
 
 def memory_cell(r):
